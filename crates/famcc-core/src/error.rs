@@ -1,0 +1,87 @@
+//! Error values. famcc-core never panics: invalid configurations and invalid
+//! inputs come back as these values.
+
+use core::fmt;
+
+/// A rejected configuration value: which parameter, at which stage (for
+/// per-stage lists), and the rule it broke.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ConfigError {
+    /// The parameter's name, as in the paper and the Python API (`eps`, `p`, `k_u`, ...).
+    pub parameter: &'static str,
+    /// Zero-based stage index for per-stage parameters (stage `i` builds `h_m(i+1)`).
+    pub stage: Option<usize>,
+    /// The rule the value broke, e.g. `"must be > 0"`.
+    pub rule: &'static str,
+}
+
+impl ConfigError {
+    /// An error for a global parameter.
+    pub const fn new(parameter: &'static str, rule: &'static str) -> Self {
+        Self {
+            parameter,
+            stage: None,
+            rule,
+        }
+    }
+
+    /// The same error, attributed to a stage.
+    pub const fn at_stage(mut self, stage: usize) -> Self {
+        self.stage = Some(stage);
+        self
+    }
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.stage {
+            Some(i) => write!(f, "stage {}: {} {}", i + 1, self.parameter, self.rule),
+            None => write!(f, "{} {}", self.parameter, self.rule),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for ConfigError {}
+
+/// Checks `x > 0` (and finite).
+pub(crate) fn positive<T: crate::Real>(x: T, name: &'static str) -> Result<(), ConfigError> {
+    if x.is_finite() && x > T::zero() {
+        Ok(())
+    } else {
+        Err(ConfigError::new(name, "must be finite and > 0"))
+    }
+}
+
+/// A step that could not be taken. The controller's state is unchanged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepError {
+    /// The measurement (or an element of the state vector) was NaN or infinite.
+    NonFiniteInput,
+    /// The `applied` input was NaN or infinite.
+    NonFiniteApplied,
+    /// A one-off sample period was not finite and > 0.
+    InvalidDt,
+    /// `step(e)` at order >= 2 needs a differentiator; without one use
+    /// `step_state` with the measured error vector.
+    NoDifferentiator,
+    /// The input was finite but so large that an internal quantity overflowed.
+    Overflow,
+}
+
+impl fmt::Display for StepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            StepError::NonFiniteInput => "input must be finite (got NaN or infinity); state unchanged",
+            StepError::NonFiniteApplied => "applied input must be finite; state unchanged",
+            StepError::InvalidDt => "dt must be finite and > 0; state unchanged",
+            StepError::NoDifferentiator => {
+                "step(e) at order >= 2 needs a differentiator; use step_state(z) for state feedback"
+            }
+            StepError::Overflow => "input too large: an internal value overflowed; state unchanged",
+        })
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for StepError {}

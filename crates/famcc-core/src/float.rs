@@ -1,0 +1,60 @@
+//! The float trait every famcc-core item is generic over.
+//!
+//! [`Real`] is implemented for `f32` and `f64`. All transcendental functions
+//! go through [`num_traits::Float`], which in `no_std` builds is backed by
+//! `libm`, so the same code runs on a host and on a Cortex-M4F.
+
+use core::fmt::Debug;
+
+/// A real scalar: `f32` or `f64`.
+///
+/// ```
+/// use famcc_core::Real;
+/// assert_eq!(<f64 as Real>::c(0.5) * 2.0, 1.0);
+/// ```
+pub trait Real:
+    num_traits::Float + num_traits::FloatConst + Copy + Default + Debug + PartialOrd + 'static
+{
+    /// Converts an `f64` constant (exact for `f64`, rounded for `f32`).
+    fn c(x: f64) -> Self;
+    /// Converts to `f64` (exact).
+    fn to_f64_lossless(self) -> f64;
+    /// Square root. Hook for targets with a hardware square root.
+    #[inline(always)]
+    fn root(self) -> Self {
+        num_traits::Float::sqrt(self)
+    }
+    /// `ln` of the smallest positive normal number: `exp(x)` below this is
+    /// subnormal or zero.
+    fn ln_min_positive() -> Self;
+}
+
+impl Real for f64 {
+    #[inline(always)]
+    fn c(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn to_f64_lossless(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn ln_min_positive() -> Self {
+        -708.396_418_532_264_1
+    }
+}
+
+impl Real for f32 {
+    #[inline(always)]
+    fn c(x: f64) -> Self {
+        x as f32
+    }
+    #[inline(always)]
+    fn to_f64_lossless(self) -> f64 {
+        f64::from(self)
+    }
+    #[inline(always)]
+    fn ln_min_positive() -> Self {
+        -87.336_55
+    }
+}
