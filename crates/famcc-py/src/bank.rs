@@ -1,0 +1,131 @@
+//! `famcc.ControllerBank`: n independent controllers with one configuration,
+//! stepped together from a NumPy array (Monte-Carlo work).
+
+use crate::controller::{with_bank, BankCores, PyController, Spec};
+use crate::errors::{ConfigError, StepError};
+use famcc_core::Real;
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::prelude::*;
+
+/// Batches at least this large release the GIL while stepping.
+const DETACH_MIN: usize = 2048;
+
+/// n independent copies of a configured controller.
+#[pyclass(module = "famcc._core")]
+pub struct ControllerBank {
+    cores: BankCores,
+    spec: Spec,
+    n: usize,
+}
+
+/// Steps every controller; returns the indices whose step failed (their
+/// state is unchanged and their output is NaN).
+fn step_all(cores: &mut BankCores, e: &[f64], out: &mut [f64]) -> Vec<usize> {
+    let mut failed = Vec::new();
+    with_bank!(cores, v => {
+        for (i, ((c, e), o)) in v.iter_mut().zip(e).zip(out.iter_mut()).enumerate() {
+            match c.step(Real::c(*e)) {
+                Ok(x) => *o = x.to_f64_lossless(),
+                Err(_) => {
+                    *o = f64::NAN;
+                    failed.push(i);
+                }
+            }
+        }
+    });
+    failed
+}
+
+#[pymethods]
+impl ControllerBank {
+    #[new]
+    fn new(controller: &PyController, n: usize) -> PyResult<Self> {
+        if n == 0 {
+            return Err(ConfigError::new_err("n must be >= 1"));
+        }
+        Ok(Self {
+            cores: controller.core.replicate(n),
+            spec: controller.spec.clone(),
+            n,
+        })
+    }
+
+    fn __len__(&self) -> usize {
+        self.n
+    }
+
+    /// Steps controller i with e[i]; returns the outputs. Equal to stepping
+    /// the copies one by one. Non-finite entries raise `StepError` before any
+    /// controller moves.
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        e: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let e = e
+            .as_slice()
+            .map_err(|_| StepError::new_err("e must be a contiguous float64 array"))?;
+        if e.len() != self.n {
+            return Err(StepError::new_err(format!(
+                "e must have length {} (one per controller), got {}",
+                self.n,
+                e.len()
+            )));
+        }
+        if let Some(i) = e.iter().position(|x| !x.is_finite()) {
+            return Err(StepError::new_err(format!(
+                "e[{i}] = {} is not finite; no controller was stepped",
+                e[i]
+            )));
+        }
+        let mut out = vec![0.0; self.n];
+        let cores = &mut self.cores;
+        let failed = if self.n >= DETACH_MIN {
+            py.detach(|| step_all(cores, e, &mut out))
+        } else {
+            step_all(cores, e, &mut out)
+        };
+        if let Some(i) = failed.first() {
+            return Err(StepError::new_err(format!(
+                "{} controllers could not step (first: index {i}): an internal value overflowed; \
+                 those controllers are unchanged, the others stepped",
+                failed.len()
+            )));
+        }
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// The constraint variables xi~ of the last step (NumPy array).
+    #[getter]
+    fn xi<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let v: Vec<f64> =
+            with_bank!(&self.cores, v => v.iter().map(|c| c.diagnostics().xi.to_f64_lossless()).collect());
+        PyArray1::from_vec(py, v)
+    }
+
+    /// Resets every controller.
+    fn reset(&mut self) {
+        with_bank!(&mut self.cores, v => v.iter_mut().for_each(|c| c.reset()))
+    }
+
+    /// A copy of controller i (as a `Controller`).
+    fn controller(&self, i: usize) -> PyResult<PyController> {
+        if i >= self.n {
+            return Err(pyo3::exceptions::PyIndexError::new_err(format!(
+                "index {i} out of range for {} controllers",
+                self.n
+            )));
+        }
+        let mut c = PyController {
+            core: crate::controller::Core::build(&self.spec)?,
+            spec: self.spec.clone(),
+        };
+        let state: Vec<f64> = with_bank!(&self.cores, v => crate::controller::snapshot_vec(&v[i]));
+        c.set_state_vec(&state)?;
+        Ok(c)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("ControllerBank(n={}, order={})", self.n, self.spec.order)
+    }
+}

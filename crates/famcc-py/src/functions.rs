@@ -1,0 +1,196 @@
+//! Building blocks as Python functions: transitions, the envelope, skewed
+//! laws, the iterative manifold, the corollaries' settling-time bounds.
+
+use crate::errors::{config_err, ConfigError};
+use crate::laws::{map_float_or_array, Law, SkewSpec};
+use famcc_core::{bounds, envelope, manifold, transition, Feedback, SkewedLaw, Transition};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+
+fn kind(name: &str) -> PyResult<Transition> {
+    match name {
+        "exponential" => Ok(Transition::Exponential),
+        "cubic" => Ok(Transition::Cubic),
+        "quintic" => Ok(Transition::Quintic),
+        "sine" => Ok(Transition::Sine),
+        other => Err(ConfigError::new_err(format!(
+            "kind must be one of 'exponential', 'cubic', 'quintic', 'sine' (got {other:?})"
+        ))),
+    }
+}
+
+/// Single-ended transition T(z) (eq. trnsT) on a float or an array.
+#[pyfunction]
+pub fn transition_t<'py>(py: Python<'py>, z: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    map_float_or_array(py, z, transition::single)
+}
+
+/// Double-ended transition S(z) (eq. trnsS or an alternative `kind`).
+#[pyfunction]
+#[pyo3(signature = (z, kind = "exponential"))]
+pub fn transition_s<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, kind: &str) -> PyResult<Bound<'py, PyAny>> {
+    let k = self::kind(kind)?;
+    map_float_or_array(py, z, |v| k.double(v))
+}
+
+/// Interval transition U(z) = S(|z|) (eq. trnsU).
+#[pyfunction]
+#[pyo3(signature = (z, kind = "exponential"))]
+pub fn transition_u<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, kind: &str) -> PyResult<Bound<'py, PyAny>> {
+    let k = self::kind(kind)?;
+    map_float_or_array(py, z, |v| k.interval(v))
+}
+
+/// The prescribed performance function rho(rho0, eps, settle_time) at t (eq. rho).
+#[pyfunction]
+pub fn rho<'py>(
+    py: Python<'py>,
+    rho0: f64,
+    eps: f64,
+    settle_time: f64,
+    t: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if !(eps > 0.0 && rho0 >= eps && rho0.is_finite()) {
+        return Err(ConfigError::new_err("rho0 and eps must satisfy rho0 >= eps > 0"));
+    }
+    if !(settle_time > 0.0 && settle_time.is_finite()) {
+        return Err(ConfigError::new_err("settle_time must be finite and > 0"));
+    }
+    map_float_or_array(py, t, |t| envelope::rho(rho0, eps, settle_time, t))
+}
+
+/// A skewed law h_m (eqs. SSMD, NSMD), callable on floats and arrays.
+#[pyclass(frozen, module = "famcc._core")]
+pub struct Skewed {
+    law: SkewedLaw<f64>,
+    desc: String,
+}
+
+#[pymethods]
+impl Skewed {
+    fn __call__<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let h = self.law;
+        map_float_or_array(py, x, |v| h.eval(v))
+    }
+    /// The inverse h_v(y) (bounded root search or closed form).
+    fn inverse<'py>(&self, py: Python<'py>, y: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let h = self.law;
+        map_float_or_array(py, y, |v| famcc_core::constraint::inverse(&h, v))
+    }
+    /// The NSMD slope k_p (0 for other designs).
+    #[getter]
+    fn k_p(&self) -> f64 {
+        self.law.k_p()
+    }
+    fn __repr__(&self) -> String {
+        self.desc.clone()
+    }
+}
+
+fn prepare(law: &Bound<'_, PyAny>, skew: Option<&Bound<'_, PyAny>>) -> PyResult<SkewedLaw<f64>> {
+    let l = Law::extract(law)?;
+    let s = match skew {
+        Some(s) => SkewSpec::extract(s)?,
+        None => None,
+    };
+    SkewedLaw::new(l.feedback::<f64>(), s.map(|s| s.skew::<f64>())).map_err(config_err)
+}
+
+/// `skewed(law, skew)`: the callable h_m built on `law` with `skew`.
+#[pyfunction]
+#[pyo3(signature = (law, skew = None))]
+pub fn skewed(law: &Bound<'_, PyAny>, skew: Option<&Bound<'_, PyAny>>) -> PyResult<Skewed> {
+    let desc = format!(
+        "skewed({}, {})",
+        law.repr()?,
+        skew.map(|s| s.repr().map(|r| r.to_string()))
+            .transpose()?
+            .unwrap_or_else(|| "None".into())
+    );
+    Ok(Skewed {
+        law: prepare(law, skew)?,
+        desc,
+    })
+}
+
+macro_rules! manifold_orders {
+    ($z:expr, $laws:expr, $($n:literal)*) => {
+        match $z.len() {
+            $($n => {
+                let mut a = [0.0; $n];
+                a.copy_from_slice($z);
+                manifold::evaluate::<f64, $n>(&a, $laws).stages.to_vec()
+            })*
+            n => return Err(ConfigError::new_err(format!("z must have 1 to 8 entries, got {n}"))),
+        }
+    };
+}
+
+/// `manifold(z, feedback, skew=None)`: s_1..s_n of eq. (IS) for the error
+/// vector z = (z1..zn); `feedback`/`skew` one value or one per stage.
+#[pyfunction]
+#[pyo3(signature = (z, feedback, skew = None))]
+pub fn manifold_values<'py>(
+    py: Python<'py>,
+    z: Vec<f64>,
+    feedback: &Bound<'py, PyAny>,
+    skew: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let n = z.len().saturating_sub(1);
+    let per_stage = |obj: &Bound<'py, PyAny>, name: &str| -> PyResult<Vec<Bound<'py, PyAny>>> {
+        if obj.is_instance_of::<pyo3::types::PyList>() || obj.is_instance_of::<pyo3::types::PyTuple>() {
+            let v: Vec<Bound<'py, PyAny>> = obj.try_iter()?.collect::<PyResult<_>>()?;
+            if v.len() != n {
+                return Err(ConfigError::new_err(format!(
+                    "{name} must have len(z) - 1 = {n} entries, got {}",
+                    v.len()
+                )));
+            }
+            Ok(v)
+        } else {
+            Ok(vec![obj.clone(); n])
+        }
+    };
+    let laws = per_stage(feedback, "feedback")?;
+    let skews = match skew {
+        Some(s) => per_stage(s, "skew")?.into_iter().map(Some).collect(),
+        None => vec![None; n],
+    };
+    let prepared: Vec<SkewedLaw<f64>> = laws
+        .iter()
+        .zip(skews.iter())
+        .map(|(l, s)| prepare(l, s.as_ref()))
+        .collect::<PyResult<_>>()?;
+    if z.iter().any(|v| !v.is_finite()) {
+        return Err(ConfigError::new_err("z must be finite"));
+    }
+    let out = manifold_orders!(&z[..], &prepared, 1 2 3 4 5 6 7 8);
+    Ok(PyArray1::from_vec(py, out))
+}
+
+/// T_fn' = |z1(0)|^(1-p) / (k (1-p)) (Corollary 1), seconds.
+#[pyfunction]
+pub fn finite_time(k: f64, p: f64, z1_0: f64) -> PyResult<f64> {
+    Feedback::FiniteTime { k, p }.validate().map_err(config_err)?;
+    Ok(bounds::finite_time(k, p, z1_0))
+}
+
+/// T_fxe' (Corollary 2), seconds.
+#[pyfunction]
+pub fn variable_exponent(k: f64, r_b: f64, r_1: f64, r_t: f64) -> PyResult<f64> {
+    Feedback::VariableExponent { k, r_b, r_1, r_t }
+        .validate()
+        .map_err(config_err)?;
+    Ok(bounds::variable_exponent(k, r_b, r_1, r_t))
+}
+
+/// T_fr' (Corollary 3) for stages given as (alpha, p, beta, q), seconds.
+#[pyfunction]
+pub fn fixed_time(stages: Vec<(f64, f64, f64, f64)>) -> PyResult<f64> {
+    for (i, &(alpha, p, beta, q)) in stages.iter().enumerate() {
+        Feedback::FixedTime { alpha, p, beta, q }
+            .validate()
+            .map_err(|e| config_err(e.at_stage(i)))?;
+    }
+    Ok(bounds::fixed_time(&stages))
+}

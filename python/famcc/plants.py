@@ -1,0 +1,656 @@
+"""Strict-feedback plants for closed-loop simulation.
+
+The plants of the paper are strict-feedback systems (paper eq. SFS)::
+
+    x_i' = g_i(x, t) x_{i+1} + f_i(x, t),   i = 1, ..., n-1
+    x_n' = g_n(x, t) u + f_n(x, t)
+    y    = x_1
+
+where ``g_i`` and ``f_i`` depend on ``x_1..x_i`` and ``t`` only. With the fully
+actuated coordinates ``y, y', ..., y^(n-1)`` the plant reads (paper eq. FAS)
+``y^(n) = G_a(x, t) u + F_a(x, t)`` with ``G_a = g_1 g_2 ... g_n``. A controller's
+error vector is ``Z = (z_1, ..., z_n)`` with ``z_i = y^(i-1) - y_d^(i-1)`` and
+``dz_n/dt = G u + F``, ``G = G_a``, ``F = F_a - y_d^(n)`` (paper eq. FASe);
+``-F/G`` is the input that would hold ``dz_n/dt = 0``.
+
+Every plant here reports ``y, ..., y^(n-1)`` and ``(G_a, F_a)`` exactly from the
+state. The paper's plants use hand-derived closed forms; the generic
+:class:`StrictFeedback` plant uses truncated Taylor arithmetic ("jets", exact
+forward-mode differentiation in time) when its callables accept jets.
+
+Examples
+--------
+>>> import numpy as np
+>>> from famcc.plants import second_order
+>>> plant = second_order("paper")
+>>> plant.order, plant.variant
+(2, 'paper')
+>>> x = plant.x0
+>>> plant.output_derivatives(0.0, x)          # (y, y') at t = 0
+array([-1.        ,  1.52701512])
+>>> g_a, f_a = plant.gain_and_drift(0.0, x)   # y'' = g_a u + f_a
+>>> round(g_a, 6)
+2.112398
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from typing import Any, ClassVar
+
+import numpy as np
+
+__all__ = [
+    "VARIANTS",
+    "Plant",
+    "StrictFeedback",
+    "second_order",
+    "third_order",
+]
+
+#: The variants every paper plant supports (see SPEC section 5).
+VARIANTS = ("paper", "code")
+
+ScalarFn = Callable[[Any, Any], Any]
+
+
+# ---------------------------------------------------------------------------
+# Jets: truncated Taylor series in time (exact forward-mode differentiation)
+# ---------------------------------------------------------------------------
+
+
+class _Jet:
+    """Truncated Taylor series ``a(t0 + h) = sum_k c[k] h^k`` (normalised coefficients).
+
+    ``c[k] = a^(k)(t0) / k!``. Arithmetic follows the standard recurrences of
+    Griewank & Walther, "Evaluating Derivatives", ch. 13. Jets do not define
+    ``__float__`` on purpose: code that silently converts to float (``math.sin``)
+    fails loudly instead of dropping derivatives. NumPy ufuncs (``np.sin``,
+    ``np.exp``, ...) work through ``__array_ufunc__``.
+
+    Examples
+    --------
+    >>> t = _Jet([0.5, 1.0, 0.0, 0.0])        # the time variable at t0 = 0.5
+    >>> y = np.sin(t * t)
+    >>> [round(v, 12) for v in y.derivatives()][:2] == [
+    ...     round(math.sin(0.25), 12), round(2 * 0.5 * math.cos(0.25), 12)]
+    True
+    """
+
+    __slots__ = ("c",)
+
+    def __init__(self, coefficients: Sequence[float]) -> None:
+        self.c = [float(v) for v in coefficients]
+
+    # -- helpers -----------------------------------------------------------
+    @property
+    def degree(self) -> int:
+        return len(self.c) - 1
+
+    def derivatives(self) -> list[float]:
+        """Return ``[a, a', a'', ...]`` (coefficients times ``k!``)."""
+        return [v * math.factorial(k) for k, v in enumerate(self.c)]
+
+    def _lift(self, other: Any) -> _Jet:
+        if isinstance(other, _Jet):
+            return other
+        if isinstance(other, (int, float, np.integer, np.floating)):
+            return _Jet([float(other)] + [0.0] * self.degree)
+        raise TypeError(f"cannot combine a jet with {type(other).__name__}")
+
+    def _binary_degree(self, other: _Jet) -> int:
+        return min(self.degree, other.degree)
+
+    def __repr__(self) -> str:
+        return f"_Jet({self.c!r})"
+
+    # -- arithmetic ----------------------------------------------------------
+    def __add__(self, other: Any) -> _Jet:
+        if isinstance(other, _Jet):
+            d = self._binary_degree(other)
+            return _Jet([self.c[k] + other.c[k] for k in range(d + 1)])
+        o = self._lift(other)
+        return _Jet([self.c[0] + o.c[0]] + self.c[1:])
+
+    __radd__ = __add__
+
+    def __neg__(self) -> _Jet:
+        return _Jet([-v for v in self.c])
+
+    def __pos__(self) -> _Jet:
+        return self
+
+    def __sub__(self, other: Any) -> _Jet:
+        return self + (-self._lift(other))
+
+    def __rsub__(self, other: Any) -> _Jet:
+        return self._lift(other) + (-self)
+
+    def __mul__(self, other: Any) -> _Jet:
+        if not isinstance(other, _Jet):
+            o = float(self._lift(other).c[0])
+            return _Jet([v * o for v in self.c])
+        d = self._binary_degree(other)
+        a, b = self.c, other.c
+        return _Jet([sum(a[i] * b[k - i] for i in range(k + 1)) for k in range(d + 1)])
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, other: Any) -> _Jet:
+        o = self._lift(other)
+        d = self._binary_degree(o)
+        a, b = self.c, o.c
+        if b[0] == 0.0:
+            raise ZeroDivisionError("jet division by a jet whose value is zero")
+        q: list[float] = []
+        for k in range(d + 1):
+            acc = a[k] - sum(b[j] * q[k - j] for j in range(1, k + 1))
+            q.append(acc / b[0])
+        return _Jet(q)
+
+    def __rtruediv__(self, other: Any) -> _Jet:
+        return self._lift(other) / self
+
+    def __pow__(self, exponent: Any) -> _Jet:
+        if isinstance(exponent, _Jet):
+            return (exponent * self.log()).exp()
+        r = float(exponent)
+        if r.is_integer() and 0 <= r <= 16:
+            result = _Jet([1.0] + [0.0] * self.degree)
+            for _ in range(int(r)):
+                result = result * self
+            return result
+        a = self.c
+        if a[0] == 0.0:
+            raise ZeroDivisionError("jet power with a non-integer exponent at value zero")
+        p = [a[0] ** r]
+        for k in range(1, len(a)):
+            acc = sum(((r + 1.0) * j - k) * a[j] * p[k - j] for j in range(1, k + 1))
+            p.append(acc / (k * a[0]))
+        return _Jet(p)
+
+    def __rpow__(self, base: Any) -> _Jet:
+        return self._lift(base) ** self
+
+    # -- elementary functions ----------------------------------------------
+    def _integrate(self, f0: float, w: _Jet) -> _Jet:
+        """Jet of ``f`` with ``f(t0) = f0`` and ``f' = a' * w``."""
+        a, out = self.c, [f0]
+        for k in range(1, len(a)):
+            out.append(sum(j * a[j] * w.c[k - j] for j in range(1, k + 1)) / k)
+        return _Jet(out)
+
+    def sin_cos(self) -> tuple[_Jet, _Jet]:
+        a = self.c
+        s, c = [math.sin(a[0])], [math.cos(a[0])]
+        for k in range(1, len(a)):
+            s.append(sum(j * a[j] * c[k - j] for j in range(1, k + 1)) / k)
+            c.append(-sum(j * a[j] * s[k - j] for j in range(1, k + 1)) / k)
+        return _Jet(s), _Jet(c)
+
+    def sin(self) -> _Jet:
+        return self.sin_cos()[0]
+
+    def cos(self) -> _Jet:
+        return self.sin_cos()[1]
+
+    def exp(self) -> _Jet:
+        a, e = self.c, [math.exp(self.c[0])]
+        for k in range(1, len(a)):
+            e.append(sum(j * a[j] * e[k - j] for j in range(1, k + 1)) / k)
+        return _Jet(e)
+
+    def log(self) -> _Jet:
+        a = self.c
+        if a[0] <= 0.0:
+            raise ValueError("jet log of a non-positive value")
+        out = [math.log(a[0])]
+        for k in range(1, len(a)):
+            acc = a[k] - sum(j * out[j] * a[k - j] for j in range(1, k)) / k
+            out.append(acc / a[0])
+        return _Jet(out)
+
+    def sqrt(self) -> _Jet:
+        return self**0.5
+
+    def tanh(self) -> _Jet:
+        a = self.c
+        t = [math.tanh(a[0])]
+        w = [1.0 - t[0] * t[0]]  # w = 1 - tanh^2, built alongside
+        for k in range(1, len(a)):
+            t.append(sum(j * a[j] * w[k - j] for j in range(1, k + 1)) / k)
+            w.append(-sum(t[i] * t[k - i] for i in range(k + 1)))
+        return _Jet(t)
+
+    def arctan(self) -> _Jet:
+        return self._integrate(math.atan(self.c[0]), 1.0 / (1.0 + self * self))
+
+    # -- NumPy interoperability --------------------------------------------
+    _UFUNCS: ClassVar[dict[str, Callable[..., Any]]] = {
+        "add": lambda a, b: a + b,
+        "subtract": lambda a, b: a - b,
+        "multiply": lambda a, b: a * b,
+        "true_divide": lambda a, b: a / b,
+        "divide": lambda a, b: a / b,
+        "power": lambda a, b: a**b,
+        "negative": lambda a: -a,
+        "positive": lambda a: a,
+        "square": lambda a: a * a,
+        "sin": lambda a: a.sin(),
+        "cos": lambda a: a.cos(),
+        "exp": lambda a: a.exp(),
+        "log": lambda a: a.log(),
+        "sqrt": lambda a: a.sqrt(),
+        "tanh": lambda a: a.tanh(),
+        "arctan": lambda a: a.arctan(),
+    }
+
+    def __array_ufunc__(self, ufunc: Any, method: str, *inputs: Any, **kwargs: Any) -> Any:
+        fn = self._UFUNCS.get(ufunc.__name__)
+        if method != "__call__" or fn is None or kwargs:
+            return NotImplemented
+        args = [self._lift(v) if not isinstance(v, _Jet) else v for v in inputs]
+        return fn(*args)
+
+
+def _sin(a: Any) -> Any:
+    return a.sin() if isinstance(a, _Jet) else math.sin(a)
+
+
+def _cos(a: Any) -> Any:
+    return a.cos() if isinstance(a, _Jet) else math.cos(a)
+
+
+def _as_scalar(value: Any) -> Any:
+    """Unwrap 0-d arrays and NumPy scalars; keep jets."""
+    if isinstance(value, _Jet):
+        return value
+    if isinstance(value, np.ndarray) and value.shape == ():
+        return _as_scalar(value.item())
+    return float(value)
+
+
+# ---------------------------------------------------------------------------
+# Plants
+# ---------------------------------------------------------------------------
+
+
+class Plant:
+    """Base class of single-input single-output plants with output ``y = x[0]``.
+
+    Subclasses implement :meth:`rhs`; :meth:`output_derivatives` and
+    :meth:`gain_and_drift` raise :class:`NotImplementedError` unless overridden.
+    A plant may also offer ``rhs_fast(t, x, u)``, the same vector field on plain
+    sequences of floats returning a tuple; :func:`famcc.simulate.simulate` then
+    integrates without NumPy's per-call overhead on tiny arrays (about 3x faster).
+
+    Parameters
+    ----------
+    order : int
+        Relative degree ``n`` (number of states for strict-feedback plants).
+    x0 : array_like
+        Initial state.
+    name, variant : str
+        Labels for reports.
+
+    Examples
+    --------
+    >>> class Integrator(Plant):
+    ...     def rhs(self, t, x, u):
+    ...         return np.array([u])
+    >>> p = Integrator(1, [0.5], name="integrator")
+    >>> p.rhs(0.0, p.x0, 2.0)
+    array([2.])
+    """
+
+    def __init__(self, order: int, x0: Sequence[float], name: str = "plant",
+                 variant: str = "") -> None:
+        if not isinstance(order, (int, np.integer)) or order < 1:
+            raise ValueError(f"order must be an integer >= 1, got {order!r}")
+        x0_arr = np.array(x0, dtype=np.float64).reshape(-1)
+        if not np.all(np.isfinite(x0_arr)):
+            raise ValueError("x0 must be finite")
+        self.order = int(order)
+        self._x0 = x0_arr
+        self.name = name
+        self.variant = variant
+
+    @property
+    def x0(self) -> np.ndarray:
+        """Initial state (a fresh float64 copy on every access)."""
+        return self._x0.copy()
+
+    def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
+        """Return ``dx/dt`` at time ``t``, state ``x`` and input ``u``."""
+        raise NotImplementedError(f"{type(self).__name__} does not define rhs")
+
+    def output_derivatives(self, t: float, x: np.ndarray) -> np.ndarray:
+        """Return ``(y, y', ..., y^(n-1))`` computed exactly from the state."""
+        raise NotImplementedError(
+            f"{type(self).__name__} cannot report its output derivatives"
+        )
+
+    def gain_and_drift(self, t: float, x: np.ndarray) -> tuple[float, float]:
+        """Return ``(G_a, F_a)`` with ``y^(n) = G_a u + F_a`` (paper eq. FAS)."""
+        raise NotImplementedError(
+            f"{type(self).__name__} cannot report its total gain and drift"
+        )
+
+    def __repr__(self) -> str:
+        label = f", variant={self.variant!r}" if self.variant else ""
+        return f"{type(self).__name__}(name={self.name!r}, order={self.order}{label})"
+
+
+class StrictFeedback(Plant):
+    """Generic strict-feedback plant (paper eq. SFS) from callables.
+
+    Parameters
+    ----------
+    g, f : sequence of callables
+        ``g = [g_1, ..., g_n]`` and ``f = [f_1, ..., f_n]``, each called as
+        ``g_i(x, t)`` with the state ``x`` (1-D array) and time ``t`` and returning a
+        scalar. ``g_i`` and ``f_i`` must depend on ``x[0..i-1]`` and ``t`` only
+        (strict-feedback structure); otherwise the output derivatives would depend
+        on the input.
+    x0 : array_like
+        Initial state of length ``n``.
+    name, variant : str
+        Labels for reports.
+
+    Notes
+    -----
+    What is supported exactly, for any order ``n``:
+
+    * :meth:`rhs` with plain float callables.
+    * :meth:`output_derivatives` for ``n <= 2`` with plain float callables
+      (``y' = g_1 x_2 + f_1`` needs no derivative of ``g`` or ``f``).
+    * ``G_a = g_1 ... g_n`` with plain float callables; ``F_a`` for ``n = 1``
+      (``F_a = f_1``).
+    * Everything else (``y''`` and higher, ``F_a`` for ``n >= 2``) needs time
+      derivatives of ``g_i`` and ``f_i`` along the trajectory. These are computed
+      exactly with truncated Taylor arithmetic (the Taylor method for ODEs): the
+      callables are called with a 1-D object array of jets for ``x`` and a jet for
+      ``t``. Callables written with operators and NumPy ufuncs (``np.sin``,
+      ``np.cos``, ``np.exp``, ``np.log``, ``np.sqrt``, ``np.tanh``, ``np.arctan``,
+      ``**``) accept jets; callables using :mod:`math`, ``float()`` or comparisons
+      do not, and the methods then raise :class:`NotImplementedError` saying so.
+
+    Examples
+    --------
+    A damped oscillator ``x1' = x2``, ``x2' = 2 u - x1 - 0.5 x2``:
+
+    >>> plant = StrictFeedback(
+    ...     g=[lambda x, t: 1.0, lambda x, t: 2.0],
+    ...     f=[lambda x, t: 0.0, lambda x, t: -x[0] - 0.5 * x[1]],
+    ...     x0=[1.0, 0.0])
+    >>> plant.rhs(0.0, plant.x0, 0.5)
+    array([0., 0.])
+    >>> plant.gain_and_drift(0.0, plant.x0)
+    (2.0, -1.0)
+    """
+
+    def __init__(self, g: Sequence[ScalarFn], f: Sequence[ScalarFn],
+                 x0: Sequence[float], name: str = "strict-feedback",
+                 variant: str = "") -> None:
+        g, f = list(g), list(f)
+        if len(g) == 0 or len(g) != len(f):
+            raise ValueError(
+                f"g and f must be non-empty and of equal length, got {len(g)} and {len(f)}"
+            )
+        if not all(callable(c) for c in g + f):
+            raise ValueError("every entry of g and f must be callable as fn(x, t)")
+        super().__init__(len(g), x0, name=name, variant=variant)
+        if self._x0.shape != (self.order,):
+            raise ValueError(
+                f"x0 must have length {self.order} (the order), got {self._x0.shape[0]}"
+            )
+        self.g = g
+        self.f = f
+
+    def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
+        n = self.order
+        out = np.empty(n)
+        for i in range(n):
+            nxt = x[i + 1] if i + 1 < n else u
+            out[i] = _as_scalar(self.g[i](x, t)) * nxt + _as_scalar(self.f[i](x, t))
+        return out
+
+    # -- exact derivatives via the Taylor method --------------------------------
+    def _taylor(self, t: float, x: np.ndarray, u: float, degree: int) -> list[list[float]]:
+        """Normalised Taylor coefficients of every state up to ``degree``.
+
+        Coefficient ``k + 1`` of ``x_i`` is coefficient ``k`` of ``x_i'`` divided by
+        ``k + 1``; coefficient ``k`` of the right-hand side needs only the state's
+        coefficients up to ``k``, so the series is built one degree at a time.
+        """
+        n = self.order
+        coeffs = [[float(v)] for v in x]
+        for k in range(degree):
+            tj = _Jet([float(t), 1.0] + [0.0] * (k - 1)) if k >= 1 else _Jet([float(t)])
+            xs = np.empty(n, dtype=object)
+            for i in range(n):
+                xs[i] = _Jet(coeffs[i][: k + 1])
+            try:
+                for i in range(n):
+                    nxt = xs[i + 1] if i + 1 < n else u
+                    gi = _as_scalar(self.g[i](xs, tj))
+                    fi = _as_scalar(self.f[i](xs, tj))
+                    rate = gi * nxt + fi
+                    ck = rate.c[k] if isinstance(rate, _Jet) else (float(rate) if k == 0 else 0.0)
+                    coeffs[i].append(ck / (k + 1))
+            except TypeError as exc:
+                raise NotImplementedError(
+                    f"{self!r}: exact derivatives need g and f callables that accept jets "
+                    "(write them with operators and NumPy ufuncs such as np.sin, not math.*); "
+                    f"calling them with jets failed: {exc}"
+                ) from exc
+        return coeffs
+
+    def output_derivatives(self, t: float, x: np.ndarray) -> np.ndarray:
+        n = self.order
+        x = np.asarray(x, dtype=np.float64)
+        if n == 1:
+            return np.array([x[0]])
+        if n == 2:
+            return np.array([
+                x[0],
+                _as_scalar(self.g[0](x, t)) * x[1] + _as_scalar(self.f[0](x, t)),
+            ])
+        c1 = self._taylor(t, x, 0.0, n - 1)[0]
+        return np.array([c1[k] * math.factorial(k) for k in range(n)])
+
+    def gain_and_drift(self, t: float, x: np.ndarray) -> tuple[float, float]:
+        n = self.order
+        x = np.asarray(x, dtype=np.float64)
+        gain = 1.0
+        for gi in self.g:
+            gain *= _as_scalar(gi(x, t))
+        if n == 1:
+            return float(gain), float(_as_scalar(self.f[0](x, t)))
+        # y^(n) is affine in u; with u = 0 it is F_a.
+        c1 = self._taylor(t, x, 0.0, n)[0]
+        return float(gain), float(c1[n] * math.factorial(n))
+
+
+def _check_variant(variant: str) -> str:
+    if variant not in VARIANTS:
+        raise ValueError(f"variant must be one of {VARIANTS!r}, got {variant!r}")
+    return variant
+
+
+class _SecondOrder(StrictFeedback):
+    """Paper eq. System_sim, with closed-form output derivatives, ``G_a`` and ``F_a``."""
+
+    def __init__(self, variant: str) -> None:
+        self._amp = 1.0 if variant == "paper" else 3.0
+        amp = self._amp
+
+        def g1(x: Any, t: Any) -> Any:
+            return 1.0 + 0.1 * _cos(x[0]) + 0.1 * _sin(t)
+
+        def f1(x: Any, t: Any) -> Any:
+            return -x[0] + _sin(t)
+
+        def g2(x: Any, t: Any) -> Any:
+            return 2.0 + 0.2 * _sin(x[0] * x[1]) + 0.1 * _cos(t)
+
+        def f2(x: Any, t: Any) -> Any:
+            return -(x[0] * x[0] - 1.0) * x[1] + amp * _sin(t) + amp * _cos(2.0 * t)
+
+        super().__init__([g1, g2], [f1, f2], [-1.0, 0.5], name="second-order",
+                         variant=variant)
+
+    def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
+        return np.array(self.rhs_fast(t, (float(x[0]), float(x[1])), u))
+
+    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float]:
+        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate.simulate`)."""
+        x1, x2 = x
+        st = math.sin(t)
+        g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * st
+        g2 = 2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * math.cos(t)
+        f2 = -(x1 * x1 - 1.0) * x2 + self._amp * (st + math.cos(2.0 * t))
+        return (g1 * x2 - x1 + st, g2 * u + f2)
+
+    def output_derivatives(self, t: float, x: np.ndarray) -> np.ndarray:
+        x1, x2 = float(x[0]), float(x[1])
+        g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * math.sin(t)
+        return np.array([x1, g1 * x2 - x1 + math.sin(t)])
+
+    def gain_and_drift(self, t: float, x: np.ndarray) -> tuple[float, float]:
+        x1, x2 = float(x[0]), float(x[1])
+        st, ct = math.sin(t), math.cos(t)
+        g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * st
+        g2 = 2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * ct
+        f2 = -(x1 * x1 - 1.0) * x2 + self._amp * (st + math.cos(2.0 * t))
+        dx1 = g1 * x2 - x1 + st
+        dg1 = -0.1 * math.sin(x1) * dx1 + 0.1 * ct       # d/dt g1
+        # y'' = dg1 x2 + g1 (g2 u + f2) + d/dt(-x1 + sin t)
+        return g1 * g2, dg1 * x2 + g1 * f2 - dx1 + ct
+
+
+class _ThirdOrder(StrictFeedback):
+    """Paper eq. System_sim3 (with the factor ``x2`` restored in ``x1'``)."""
+
+    def __init__(self, variant: str) -> None:
+        def g1(x: Any, t: Any) -> Any:
+            return 1.0 + 0.1 * _sin(x[0]) + 0.1 * _cos(t)
+
+        def f1(x: Any, t: Any) -> Any:
+            return -x[0] + _cos(t)
+
+        def g2(x: Any, t: Any) -> Any:
+            return 1.0 + 0.1 * _cos(x[0] * x[1]) + 0.1 * _sin(t)
+
+        def f2(x: Any, t: Any) -> Any:
+            return -(x[0] * x[0] - 1.0) * x[1] + _sin(t)
+
+        def g3(x: Any, t: Any) -> Any:
+            return 2.0 + 0.2 * _sin(x[0] * x[1] * x[2]) + 0.1 * _cos(t)
+
+        def f3(x: Any, t: Any) -> Any:
+            return -(x[0] * x[0] + x[1]) * x[2] + 10.0 * _sin(t) + 10.0 * _cos(2.0 * t)
+
+        x0 = [1.0, -0.2, 0.4] if variant == "paper" else [1.0, 0.5, 4.0]
+        super().__init__([g1, g2, g3], [f1, f2, f3], x0, name="third-order",
+                         variant=variant)
+
+    @staticmethod
+    def _terms(t: float, x: np.ndarray) -> dict[str, float]:
+        x1, x2, x3 = float(x[0]), float(x[1]), float(x[2])
+        st, ct = math.sin(t), math.cos(t)
+        sx1, cx1 = math.sin(x1), math.cos(x1)
+        p12 = x1 * x2
+        g1 = 1.0 + 0.1 * sx1 + 0.1 * ct
+        g2 = 1.0 + 0.1 * math.cos(p12) + 0.1 * st
+        g3 = 2.0 + 0.2 * math.sin(p12 * x3) + 0.1 * ct
+        f1 = -x1 + ct
+        f2 = -(x1 * x1 - 1.0) * x2 + st
+        f3 = -(x1 * x1 + x2) * x3 + 10.0 * st + 10.0 * math.cos(2.0 * t)
+        return {"x1": x1, "x2": x2, "x3": x3, "st": st, "ct": ct, "sx1": sx1, "cx1": cx1,
+                "p12": p12, "g1": g1, "g2": g2, "g3": g3, "f1": f1, "f2": f2, "f3": f3}
+
+    def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
+        return np.array(self.rhs_fast(t, (float(x[0]), float(x[1]), float(x[2])), u))
+
+    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float, float]:
+        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate.simulate`)."""
+        x1, x2, x3 = x
+        st, ct = math.sin(t), math.cos(t)
+        return (
+            (1.0 + 0.1 * math.sin(x1) + 0.1 * ct) * x2 - x1 + ct,
+            (1.0 + 0.1 * math.cos(x1 * x2) + 0.1 * st) * x3 - (x1 * x1 - 1.0) * x2 + st,
+            (2.0 + 0.2 * math.sin(x1 * x2 * x3) + 0.1 * ct) * u
+            - (x1 * x1 + x2) * x3 + 10.0 * st + 10.0 * math.cos(2.0 * t),
+        )
+
+    def _derivatives(self, t: float, x: np.ndarray) -> tuple[float, float, float, float, float]:
+        """Return ``(y, y', y'', G_a, F_a)``; see the derivation inline."""
+        d = self._terms(t, x)
+        x1, x2, x3 = d["x1"], d["x2"], d["x3"]
+        st, ct, sx1, cx1 = d["st"], d["ct"], d["sx1"], d["cx1"]
+        g1, g2, g3, f2, f3 = d["g1"], d["g2"], d["g3"], d["f2"], d["f3"]
+        dx1 = g1 * x2 + d["f1"]                                   # y'
+        dx2 = g2 * x3 + f2
+        dg1 = 0.1 * cx1 * dx1 - 0.1 * st                          # d/dt g1
+        ddx1 = dg1 * x2 + g1 * dx2 - dx1 - st                     # y'' (f1' = -x1' - sin t)
+        ddg1 = -0.1 * sx1 * dx1 * dx1 + 0.1 * cx1 * ddx1 - 0.1 * ct
+        dg2 = -0.1 * math.sin(d["p12"]) * (dx1 * x2 + x1 * dx2) + 0.1 * ct
+        df2 = -2.0 * x1 * dx1 * x2 - (x1 * x1 - 1.0) * dx2 + ct
+        # x2'' = dg2 x3 + g2 x3' + df2, x3' = g3 u + f3
+        ddx2_drift = dg2 * x3 + g2 * f3 + df2
+        # y''' = g1'' x2 + 2 g1' x2' + g1 x2'' + f1'', f1'' = -x1'' - cos t
+        drift = ddg1 * x2 + 2.0 * dg1 * dx2 + g1 * ddx2_drift - ddx1 - ct
+        return x1, dx1, ddx1, g1 * g2 * g3, drift
+
+    def output_derivatives(self, t: float, x: np.ndarray) -> np.ndarray:
+        y, dy, ddy, _, _ = self._derivatives(t, x)
+        return np.array([y, dy, ddy])
+
+    def gain_and_drift(self, t: float, x: np.ndarray) -> tuple[float, float]:
+        _, _, _, gain, drift = self._derivatives(t, x)
+        return gain, drift
+
+
+def second_order(variant: str = "code") -> Plant:
+    """The paper's second-order plant (eq. System_sim), ``x(0) = (-1, 0.5)``.
+
+    ``x1' = (1 + 0.1 cos x1 + 0.1 sin t) x2 - x1 + sin t`` and
+    ``x2' = (2 + 0.2 sin(x1 x2) + 0.1 cos t) u + f2`` with
+    ``f2 = -(x1^2 - 1) x2 + a (sin t + cos 2t)``, ``a = 1`` in variant ``"paper"``
+    (as printed) and ``a = 3`` in variant ``"code"`` (the authors' MATLAB code).
+
+    Parameters
+    ----------
+    variant : {"code", "paper"}
+
+    Examples
+    --------
+    >>> p = second_order()
+    >>> p.name, p.variant, p.x0.tolist()
+    ('second-order', 'code', [-1.0, 0.5])
+    """
+    return _SecondOrder(_check_variant(variant))
+
+
+def third_order(variant: str = "code") -> Plant:
+    """The paper's third-order plant (eq. System_sim3).
+
+    ``x1' = (1 + 0.1 sin x1 + 0.1 cos t) x2 - x1 + cos t`` (the printed equation
+    omits the factor ``x2``, which makes the plant uncontrollable; both variants
+    restore it), ``x2' = (1 + 0.1 cos(x1 x2) + 0.1 sin t) x3 - (x1^2 - 1) x2 + sin t``,
+    ``x3' = (2 + 0.2 sin(x1 x2 x3) + 0.1 cos t) u - (x1^2 + x2) x3 + 10 sin t
+    + 10 cos 2t``. ``x(0) = (1, -0.2, 0.4)`` in variant ``"paper"``, ``(1, 0.5, 4)``
+    in variant ``"code"``.
+
+    Parameters
+    ----------
+    variant : {"code", "paper"}
+
+    Examples
+    --------
+    >>> third_order("paper").x0.tolist()
+    [1.0, -0.2, 0.4]
+    """
+    return _ThirdOrder(_check_variant(variant))

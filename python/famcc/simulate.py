@@ -1,0 +1,570 @@
+"""Sampled closed-loop simulation of a plant under a discrete-time controller.
+
+The controller is sampled and held like real hardware: at ``t_k = k dt`` it reads
+``e_k = y(t_k) - y_d(t_k)`` and returns ``v_k``; the actuator applies
+``u_k = clip(v_k, u_limits)`` constantly until ``t_{k+1}``, while the plant is
+integrated finely in between.
+
+Examples
+--------
+>>> import numpy as np
+>>> from famcc.plants import second_order
+>>> from famcc.simulate import simulate
+>>> class PD:                        # any object with dt, order and step() works
+...     dt, order = 1e-3, 2
+...     def __init__(self):
+...         self.prev = None
+...     def step(self, e, applied=None):
+...         de = 0.0 if self.prev is None else (e - self.prev) / self.dt
+...         self.prev = e
+...         return -25.0 * e - 10.0 * de
+>>> res = simulate(second_order("paper"), PD(), t_end=5.0, record=False)
+>>> len(res.t), float(res.t[-1])
+(5001, 5.0)
+>>> bool(np.max(np.abs(res.z[-1000:, 0])) < 0.1)
+True
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = ["SimResult", "Sine", "simulate"]
+
+
+class Sine:
+    """Sinusoidal reference ``y_d(t) = amplitude * sin(omega t + phase)``.
+
+    Called as ``ref(t, k)`` it returns the ``k``-th time derivative.
+
+    Parameters
+    ----------
+    amplitude, omega, phase : float
+
+    Examples
+    --------
+    >>> ref = Sine()
+    >>> ref(0.0, 0), ref(0.0, 1), ref(0.0, 2)
+    (0.0, 1.0, -0.0)
+    """
+
+    def __init__(self, amplitude: float = 1.0, omega: float = 1.0, phase: float = 0.0) -> None:
+        for label, value in (("amplitude", amplitude), ("omega", omega), ("phase", phase)):
+            if not isinstance(value, (int, float, np.integer, np.floating)) or not math.isfinite(
+                value
+            ):
+                raise ValueError(f"{label} must be a finite number, got {value!r}")
+        self.amplitude = float(amplitude)
+        self.omega = float(omega)
+        self.phase = float(phase)
+
+    def __call__(self, t: float, k: int = 0) -> float:
+        if k < 0:
+            raise ValueError(f"derivative order k must be >= 0, got {k}")
+        arg = self.omega * t + self.phase
+        # d^k/dt^k sin(w t + p) = w^k sin(w t + p + k pi/2), exact phase shifts
+        sc = (math.sin(arg), math.cos(arg), -math.sin(arg), -math.cos(arg))[k % 4]
+        return self.amplitude * self.omega**k * sc
+
+    def __repr__(self) -> str:
+        return f"Sine(amplitude={self.amplitude!r}, omega={self.omega!r}, phase={self.phase!r})"
+
+
+def _reference_derivatives(reference: Any, order: int) -> tuple[Callable[[float], np.ndarray], int]:
+    """Return ``(fn, m)``: ``fn(t)`` gives ``(y_d, ..., y_d^(m))``, ``m`` is n or n - 1."""
+    if reference is None:
+        reference = Sine()
+    if isinstance(reference, (tuple, list)):
+        fns = list(reference)
+        if len(fns) < order or not all(callable(fn) for fn in fns):
+            raise ValueError(
+                f"reference as a sequence must hold at least {order} callables "
+                f"(y_d and its derivatives up to order {order - 1}), got {len(fns)}"
+            )
+        fns = fns[: order + 1]
+
+        def from_seq(t: float) -> np.ndarray:
+            return np.array([float(fn(t)) for fn in fns])
+
+        fn_out, m = from_seq, len(fns) - 1
+    elif callable(reference):
+        m = order
+
+        def from_call(t: float) -> np.ndarray:
+            return np.array([float(reference(t, k)) for k in range(m + 1)])
+
+        fn_out = from_call
+    else:
+        raise ValueError(  # noqa: TRY004 - bad arguments raise ValueError throughout
+            "reference must be None, a callable reference(t, k) or a sequence of callables"
+        )
+    try:
+        probe = fn_out(0.0)
+    except Exception as exc:
+        raise ValueError(f"reference could not be evaluated at t = 0: {exc}") from exc
+    if not np.all(np.isfinite(probe)):
+        raise ValueError("reference returned a non-finite value at t = 0")
+    return fn_out, m
+
+
+@dataclass
+class SimResult:
+    """Recorded closed loop, one row per controller sample.
+
+    Attributes
+    ----------
+    t : ndarray, shape (K,)
+        Sample times ``k dt``.
+    y, y_d : ndarray, shape (K,)
+        Plant output and reference at the samples.
+    x : ndarray, shape (K, n)
+        Plant state at the samples.
+    z : ndarray, shape (K, n)
+        True error vector ``z_i = y^(i-1) - y_d^(i-1)``; columns after the first are
+        NaN when the plant cannot report its output derivatives.
+    v, u : ndarray, shape (K,)
+        Controller output and applied (saturated) input, held over ``[t_k, t_k + dt)``.
+    dt : float
+        Sample period.
+    u_limits : (float, float) or None
+        Actuator limits, None when unsaturated.
+    z_hat, xi, s, s_prev, ds_prev, bounds, nominal_bounds, expanded : ndarray or None
+        Controller diagnostics read after each step (None when not recorded).
+        ``bounds`` and ``nominal_bounds`` have shape (K, 2): flexible / nominal upper
+        bounds in the x and y directions.
+    clamp_count : int
+        The controller's final clamp count.
+    neg_f_over_g : ndarray or None
+        ``-F/G`` (the input that holds ``dz_n/dt = 0``), None when unknown.
+
+    Examples
+    --------
+    >>> t = np.array([0.0, 0.1, 0.2, 0.3, 0.4])
+    >>> z1 = np.array([1.0, 0.05, 0.2, 0.01, 0.0])
+    >>> r = SimResult(t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None],
+    ...               v=0 * t, u=0 * t, dt=0.1)
+    >>> r.first_entry(0.1), r.settling_time(0.1)
+    (0.1, 0.3)
+    """
+
+    t: np.ndarray
+    y: np.ndarray
+    y_d: np.ndarray
+    x: np.ndarray
+    z: np.ndarray
+    v: np.ndarray
+    u: np.ndarray
+    dt: float
+    u_limits: tuple[float, float] | None = None
+    z_hat: np.ndarray | None = None
+    xi: np.ndarray | None = None
+    s: np.ndarray | None = None
+    s_prev: np.ndarray | None = None
+    ds_prev: np.ndarray | None = None
+    bounds: np.ndarray | None = None
+    nominal_bounds: np.ndarray | None = None
+    expanded: np.ndarray | None = None
+    clamp_count: int = 0
+    neg_f_over_g: np.ndarray | None = None
+
+    # -- accuracy ------------------------------------------------------------
+    @property
+    def z1(self) -> np.ndarray:
+        """Tracking error ``y - y_d``."""
+        return np.asarray(self.z)[:, 0]
+
+    @staticmethod
+    def _check_eps(eps: float) -> float:
+        if not (isinstance(eps, (int, float, np.integer, np.floating)) and eps > 0
+                and math.isfinite(eps)):
+            raise ValueError(f"eps must be a finite number > 0, got {eps!r}")
+        return float(eps)
+
+    def settling_time(self, eps: float) -> float | None:
+        """First time after which ``|z1| < eps`` holds to the end of the horizon.
+
+        That is the sample time following the last sample with ``|z1| >= eps``;
+        0.0 when every sample is inside; None when the last sample is outside.
+        """
+        eps = self._check_eps(eps)
+        outside = np.flatnonzero(~(np.abs(self.z1) < eps))   # NaN counts as outside
+        if outside.size == 0:
+            return 0.0
+        last = int(outside[-1])
+        if last == len(self.t) - 1:
+            return None
+        return float(self.t[last + 1])
+
+    def first_entry(self, eps: float) -> float | None:
+        """First sample time with ``|z1| < eps`` (None if never)."""
+        eps = self._check_eps(eps)
+        inside = np.flatnonzero(np.abs(self.z1) < eps)
+        return float(self.t[inside[0]]) if inside.size else None
+
+    # -- constraint variable and input ----------------------------------------
+    @property
+    def max_abs_xi(self) -> float | None:
+        """``max |xi|`` over the run (None when diagnostics were not recorded)."""
+        if self.xi is None or len(self.xi) == 0:
+            return None
+        return float(np.max(np.abs(self.xi)))
+
+    @property
+    def u_min(self) -> float:
+        """Smallest applied input."""
+        return float(np.min(self.u))
+
+    @property
+    def u_max(self) -> float:
+        """Largest applied input."""
+        return float(np.max(self.u))
+
+    def _saturated(self) -> np.ndarray:
+        v = np.asarray(self.v)
+        if self.u_limits is None:
+            return np.zeros(v.shape, dtype=bool)
+        lo, hi = self.u_limits
+        return (v < lo) | (v > hi)
+
+    @property
+    def saturated_fraction(self) -> float:
+        """Fraction of samples whose ``v`` lay outside ``u_limits`` (0 without limits)."""
+        sat = self._saturated()
+        return float(np.mean(sat)) if sat.size else 0.0
+
+    def saturation_episodes(self) -> list[tuple[float, float]]:
+        """Runs of consecutive saturated samples as ``(start, end)`` times.
+
+        An episode covers the hold intervals ``[t_k, t_k + dt)`` of its samples, so
+        ``end`` is the time of the first unsaturated sample after the run (clipped
+        to the last sample time when the run reaches the end of the horizon).
+        """
+        sat = self._saturated().astype(np.int8)
+        if not sat.any():
+            return []
+        edges = np.diff(np.concatenate(([0], sat, [0])))
+        starts = np.flatnonzero(edges == 1)
+        stops = np.flatnonzero(edges == -1)          # index after the last saturated one
+        t = np.asarray(self.t)
+        out = []
+        for a, b in zip(starts, stops):
+            end = float(t[b]) if b < len(t) else float(t[-1])
+            out.append((float(t[a]), end))
+        return out
+
+    @property
+    def last_saturation_end(self) -> float | None:
+        """End ``T_e`` of the last saturation episode (None if never saturated)."""
+        episodes = self.saturation_episodes()
+        return episodes[-1][1] if episodes else None
+
+    # -- flexible boundary ---------------------------------------------------
+    @property
+    def largest_expansion(self) -> float | None:
+        """Largest ratio flexible / nominal bound over samples and directions.
+
+        1.0 when never expanded; directions with a zero nominal bound (unused by the
+        constraint) are ignored. None when diagnostics were not recorded.
+        """
+        if self.bounds is None or self.nominal_bounds is None or self.expanded is None:
+            return None
+        if not np.any(self.expanded):
+            return 1.0
+        b = np.asarray(self.bounds, dtype=float)
+        nb = np.asarray(self.nominal_bounds, dtype=float)
+        ok = np.isfinite(b) & np.isfinite(nb) & (nb > 0)
+        if not ok.any():
+            return 1.0
+        return float(max(1.0, np.max(b[ok] / nb[ok])))
+
+    @property
+    def nominal_return_time(self) -> float | None:
+        """First time after the last expanded sample with bounds equal to nominal.
+
+        None when the bounds never expanded or have not returned by the end.
+        """
+        if self.bounds is None or self.nominal_bounds is None or self.expanded is None:
+            return None
+        expanded = np.flatnonzero(np.asarray(self.expanded, dtype=bool))
+        if expanded.size == 0:
+            return None
+        b = np.asarray(self.bounds, dtype=float)
+        nb = np.asarray(self.nominal_bounds, dtype=float)
+        equal = np.all(np.isclose(b, nb, rtol=1e-12, atol=0.0), axis=1)
+        after = np.flatnonzero(equal[expanded[-1] + 1:])
+        if after.size == 0:
+            return None
+        return float(self.t[expanded[-1] + 1 + after[0]])
+
+    def summary(self, eps: float = 0.1) -> dict[str, Any]:
+        """The metrics as a flat dict (accuracy metrics use ``eps``)."""
+        episodes = self.saturation_episodes()
+        return {
+            "eps": float(eps),
+            "settling_time": self.settling_time(eps),
+            "first_entry": self.first_entry(eps),
+            "max_abs_z1_final_second": _tail_max(self.t, np.abs(self.z1), 1.0),
+            "max_abs_xi": self.max_abs_xi,
+            "u_min": self.u_min,
+            "u_max": self.u_max,
+            "saturated_fraction": self.saturated_fraction,
+            "saturation_episodes": len(episodes),
+            "last_saturation_end": self.last_saturation_end,
+            "largest_expansion": self.largest_expansion,
+            "nominal_return_time": self.nominal_return_time,
+            "clamp_count": int(self.clamp_count),
+        }
+
+
+def _tail_max(t: np.ndarray, values: np.ndarray, window: float) -> float:
+    mask = np.asarray(t) >= (t[-1] - window)
+    return float(np.max(values[mask]))
+
+
+def _rk4(plant: Any, t0: float, x: np.ndarray, u: float, h: float, steps: int) -> np.ndarray:
+    """Classical RK4 over ``steps`` substeps of size ``h`` with ``u`` held (NumPy path)."""
+    rhs = plant.rhs
+    half = 0.5 * h
+    for j in range(steps):
+        t = t0 + j * h
+        k1 = rhs(t, x, u)
+        k2 = rhs(t + half, x + half * k1, u)
+        k3 = rhs(t + half, x + half * k2, u)
+        k4 = rhs(t + h, x + h * k3, u)
+        x = x + (h / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
+    return x
+
+
+def _rk4_fast(rhs: Callable[..., Sequence[float]], t0: float, x: list[float], u: float,
+              h: float, steps: int) -> list[float]:
+    """The same RK4 on plain lists of floats, for plants offering ``rhs_fast``."""
+    half, sixth = 0.5 * h, h / 6.0
+    for j in range(steps):
+        t = t0 + j * h
+        k1 = rhs(t, x, u)
+        k2 = rhs(t + half, [a + half * b for a, b in zip(x, k1)], u)
+        k3 = rhs(t + half, [a + half * b for a, b in zip(x, k2)], u)
+        k4 = rhs(t + h, [a + h * b for a, b in zip(x, k3)], u)
+        x = [a + sixth * (b1 + 2.0 * (b2 + b3) + b4)
+             for a, b1, b2, b3, b4 in zip(x, k1, k2, k3, k4)]
+    return x
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, bool
+    )
+
+
+def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
+             u_limits: Sequence[float] | None = None, substeps: int = 10,
+             record: bool = True) -> SimResult:
+    """Run a sampled-and-held closed loop and record it.
+
+    Parameters
+    ----------
+    plant : famcc.plants.Plant
+        Anything with ``order``, ``x0``, ``rhs(t, x, u)`` and, for the true error
+        vector and ``-F/G``, ``output_derivatives(t, x)`` and ``gain_and_drift(t, x)``
+        (either may raise :class:`NotImplementedError`).
+    controller : object
+        Duck-typed: ``dt`` (s), ``order`` (must equal the plant's), ``step(e,
+        applied=None) -> float`` and, when ``record`` is true, ``diagnostics``
+        (attributes ``xi, s, s_prev, ds_prev, bounds, nominal_bounds, z_hat,
+        expanded, clamp_count``). The controller is used as given (not reset).
+    t_end : float
+        Horizon in seconds, > 0. It is rounded to a whole number of samples:
+        ``K = round(t_end / dt) + 1`` samples at ``t_k = k dt``, ``k = 0..K-1``, so
+        both ``t = 0`` and ``t ~= t_end`` are sampled. The plant is integrated up to
+        the last sample; the last output is recorded but never applied.
+    reference : None, callable or sequence of callables
+        None means ``y_d = sin t`` (:class:`Sine`). A callable is called as
+        ``reference(t, k)`` for the ``k``-th derivative, ``k = 0..n``. A sequence
+        ``(y_d, y_d', ...)`` of callables ``fn(t)`` needs at least ``n`` entries;
+        ``-F/G`` also needs the ``n``-th derivative (``n + 1`` entries).
+    u_limits : (lo, hi) or None
+        Actuator saturation, ``lo < 0 < hi``; None means no saturation.
+    substeps : int
+        RK4 substeps per sample period (>= 1).
+    record : bool
+        Read the controller's diagnostics and ``-F/G`` at every sample. With
+        False those fields are None and any object with ``dt``, ``order`` and
+        ``step`` can be simulated.
+
+    Returns
+    -------
+    SimResult
+
+    Raises
+    ------
+    ValueError
+        For a bad argument (the message names it).
+    FloatingPointError
+        When the plant state or the controller output becomes non-finite (the
+        message gives the time).
+
+    Notes
+    -----
+    Integration uses classical fixed-step RK4 with ``substeps`` steps per sample
+    period, aligned to the sample grid. Between samples the plant is smooth and the
+    input is constant, so RK4 keeps its fourth-order accuracy without having to
+    locate the input's jumps (they fall on step boundaries). An adaptive solver
+    would have to restart at every sample and would spend its step-size control
+    rediscovering the same discontinuities. Measured on the second-order plant
+    under a PD loop, 10 and 100 substeps differ by 2e-12 in the state at
+    ``dt = 1e-3`` and by 1e-7 at ``dt = 1e-2``; halving the substep cuts the error
+    16-fold. When the plant offers ``rhs_fast(t, x, u)`` (plain floats in and out)
+    the same RK4 runs on Python floats, about 3x faster than on tiny arrays.
+
+    The true error vector uses the plant's exact output derivatives, so it is the
+    yardstick for the controller's own estimate ``z_hat``.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> from famcc.plants import second_order
+    >>> p_only = SimpleNamespace(dt=0.01, order=2, step=lambda e, applied=None: -20.0 * e)
+    >>> res = simulate(second_order(), p_only, t_end=1.0, u_limits=(-2.5, 3.0), record=False)
+    >>> len(res.t), res.u_max <= 3.0, res.saturation_episodes()[0][0]
+    (101, True, 0.0)
+    """
+    # -- validate -------------------------------------------------------------
+    for attr in ("dt", "order", "step"):
+        if not hasattr(controller, attr):
+            raise ValueError(f"controller must have an attribute {attr!r}")
+    dt = controller.dt
+    if not _is_number(dt) or not (math.isfinite(dt) and dt > 0):
+        raise ValueError(f"controller.dt must be a finite number > 0, got {dt!r}")
+    dt = float(dt)
+    n = getattr(plant, "order", None)
+    if not isinstance(n, (int, np.integer)) or n < 1 or not hasattr(plant, "rhs"):
+        raise ValueError("plant must have an integer order >= 1 and an rhs(t, x, u) method")
+    n = int(n)
+    if controller.order != n:
+        raise ValueError(
+            f"controller.order ({controller.order}) must equal the plant order ({n})"
+        )
+    if record and not hasattr(controller, "diagnostics"):
+        raise ValueError("controller has no attribute 'diagnostics'; pass record=False")
+    if not _is_number(t_end) or not (math.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"t_end must be a finite number > 0, got {t_end!r}")
+    steps = round(t_end / dt)
+    if steps < 1:
+        raise ValueError(f"t_end ({t_end}) must be at least half a sample period dt ({dt})")
+    if not isinstance(substeps, (int, np.integer)) or isinstance(substeps, bool) or substeps < 1:
+        raise ValueError(f"substeps must be an integer >= 1, got {substeps!r}")
+    limits: tuple[float, float] | None = None
+    if u_limits is not None:
+        try:
+            lo, hi = (float(v) for v in u_limits)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"u_limits must be None or a pair (lo, hi), got {u_limits!r}") from exc
+        if not (lo < 0.0 < hi) or math.isnan(lo) or math.isnan(hi):
+            raise ValueError(f"u_limits must satisfy lo < 0 < hi, got {u_limits!r}")
+        limits = (lo, hi)
+    ref_fn, ref_order = _reference_derivatives(reference, n)
+    x = np.array(plant.x0, dtype=np.float64).reshape(-1)
+    if x.shape != (n,) or not np.all(np.isfinite(x)):
+        raise ValueError(f"plant.x0 must be {n} finite numbers, got {x.tolist()}")
+
+    # -- storage ----------------------------------------------------------------
+    K = steps + 1
+    t_arr = np.arange(K) * dt
+    y_arr = np.empty(K)
+    yd_arr = np.empty(K)
+    x_arr = np.empty((K, n))
+    z_arr = np.full((K, n), np.nan)
+    v_arr = np.empty(K)
+    u_arr = np.empty(K)
+    has_derivs = True
+    has_fg = record and ref_order >= n
+    negfg = np.full(K, np.nan) if has_fg else None
+    if record:
+        zh_arr = np.full((K, n), np.nan)
+        xi_arr, s_arr, sp_arr, dsp_arr = (np.full(K, np.nan) for _ in range(4))
+        b_arr = np.full((K, 2), np.nan)
+        nb_arr = np.full((K, 2), np.nan)
+        ex_arr = np.zeros(K, dtype=bool)
+    clamp_count = 0
+
+    # -- loop -------------------------------------------------------------------
+    u_prev: float | None = None
+    h = dt / substeps
+    fast = getattr(plant, "rhs_fast", None)
+    with np.errstate(over="ignore", invalid="ignore"):
+        for k in range(K):
+            t = float(t_arr[k])
+            yd = ref_fn(t)
+            y = float(x[0])
+            e = y - float(yd[0])
+            v = controller.step(e, applied=u_prev)
+            v = float(v)
+            if not math.isfinite(v):
+                raise FloatingPointError(
+                    f"controller returned a non-finite output at t = {t:.6g} s"
+                )
+            u = v if limits is None else min(max(v, limits[0]), limits[1])
+
+            y_arr[k], yd_arr[k], v_arr[k], u_arr[k] = y, yd[0], v, u
+            x_arr[k] = x
+            z_arr[k, 0] = e
+            if has_derivs and n > 1:
+                try:
+                    z_arr[k] = np.asarray(plant.output_derivatives(t, x), dtype=float) - yd[:n]
+                except NotImplementedError:
+                    has_derivs = False
+            if record:
+                d = controller.diagnostics
+                xi_arr[k] = d.xi
+                s_arr[k] = d.s
+                sp_arr[k] = d.s_prev
+                dsp_arr[k] = d.ds_prev
+                b_arr[k] = d.bounds
+                nb_arr[k] = d.nominal_bounds
+                zh_arr[k] = np.asarray(d.z_hat, dtype=float)
+                ex_arr[k] = bool(d.expanded)
+                clamp_count = int(d.clamp_count)
+                if has_fg and negfg is not None:
+                    try:
+                        gain, drift = plant.gain_and_drift(t, x)
+                        negfg[k] = -(drift - yd[n]) / gain
+                    except NotImplementedError:
+                        has_fg = False
+                        negfg = None
+
+            if k < K - 1:
+                try:
+                    if fast is not None:
+                        x = np.array(_rk4_fast(fast, t, x.tolist(), u, h, substeps))
+                    else:
+                        x = _rk4(plant, t, x, u, h, substeps)
+                except (OverflowError, ValueError, ZeroDivisionError) as exc:
+                    raise FloatingPointError(
+                        f"plant integration failed between t = {t:.6g} s and "
+                        f"t = {t + dt:.6g} s: {exc}"
+                    ) from exc
+                if not np.all(np.isfinite(x)):
+                    raise FloatingPointError(
+                        f"plant state became non-finite between t = {t:.6g} s and "
+                        f"t = {t + dt:.6g} s: {x.tolist()}"
+                    )
+            u_prev = u
+
+    result = SimResult(t=t_arr, y=y_arr, y_d=yd_arr, x=x_arr, z=z_arr, v=v_arr, u=u_arr,
+                       dt=dt, u_limits=limits, clamp_count=clamp_count, neg_f_over_g=negfg)
+    if record:
+        result.z_hat, result.xi, result.s = zh_arr, xi_arr, s_arr
+        result.s_prev, result.ds_prev = sp_arr, dsp_arr
+        result.bounds, result.nominal_bounds, result.expanded = b_arr, nb_arr, ex_arr
+    return result
+
+
+# ``famcc`` may re-export the function as ``famcc.simulate``, shadowing this module's
+# name; attaching the helpers keeps ``famcc.simulate.Sine`` and friends working.
+simulate.Sine = Sine  # type: ignore[attr-defined]
+simulate.SimResult = SimResult  # type: ignore[attr-defined]
