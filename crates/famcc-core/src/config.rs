@@ -98,8 +98,8 @@ pub struct Config<T, const N: usize> {
 
 impl<T: Real, const N: usize> Config<T, N> {
     /// A configuration with the required values and the paper's defaults
-    /// (`k0 = 2`, log Gamma, `rho_e = 0.01`, the paper's latch, no
-    /// differentiator). `laws` holds one `(h_p, skew)` per stage: exactly
+    /// (`k0 = 2`, log Gamma, `rho_e = 0.01` — or a tenth of the smallest final
+    /// width when that is below 0.1 —, the paper's latch, no differentiator). `laws` holds one `(h_p, skew)` per stage: exactly
     /// `N - 1` of them.
     pub fn new(
         dt: T,
@@ -130,7 +130,7 @@ impl<T: Real, const N: usize> Config<T, N> {
             k0: T::c(2.0),
             k_u,
             gamma: Gamma::Log,
-            rho_e: Some(T::c(0.01)),
+            rho_e: Some(Self::default_rho_e(&constraint)),
             transition: Transition::Exponential,
             latch: Latch::Paper,
             differentiator: None,
@@ -139,6 +139,18 @@ impl<T: Real, const N: usize> Config<T, N> {
         };
         cfg.validate()?;
         Ok(cfg)
+    }
+
+    /// `0.01`, or a tenth of the smallest final half-width when that is
+    /// smaller (the paper asks `rho_e << sqrt(eps_x^2 + eps_y^2)`).
+    fn default_rho_e(constraint: &Constraint<T>) -> T {
+        let (ex, ey) = constraint.eps();
+        let smallest = match constraint.kind() {
+            ConstraintKind::Oblique => ex.min(ey),
+            ConstraintKind::Lateral => ex,
+            ConstraintKind::Longitudinal => ey,
+        };
+        T::c(0.01).min(smallest * T::c(0.1))
     }
 
     /// The stage laws `h_m1..h_m(N-1)`.

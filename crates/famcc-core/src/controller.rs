@@ -11,9 +11,14 @@
 //! 3. the estimate advances, `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` (eq. HGD
 //!    discretized at construction).
 //!
-//! A step is transactional: on any error the state is unchanged. Without
-//! flexible boundaries a too slow sample rate can push `|xi|` to 1: `xi` is
-//! then clamped to the largest float below 1 and the event counted.
+//! A step is transactional: on an error the state is unchanged, with one
+//! exception: [`StepError::Overflow`] after the first step means the sample
+//! was valid but the law overflowed on it (an outlier drove the estimate out
+//! of range); the estimate and the clock then advance, so the controller
+//! recovers as the estimate decays, and the caller holds its last output.
+//! Without flexible boundaries a too slow sample rate can push `|xi|` to 1:
+//! `xi` is then clamped to `1 - epsilon` (`Gamma` stays finite) and the event
+//! counted.
 //!
 //! ```
 //! use famcc_core::{Config, Constraint, Controller, Feedback, HighGain, Discretization};
@@ -341,13 +346,28 @@ impl<T: Real, const N: usize> Controller<T, N> {
             return Err(StepError::Overflow);
         }
         let t = self.time();
+        let t_next = t + dt;
+        if !t_next.is_finite() {
+            return Err(StepError::InvalidDt);
+        }
         let (env_x, env_y) = if self.state.started {
             (self.state.env_x, self.state.env_y)
         } else {
-            self.latch(&z)
+            let (ex, ey) = self.latch(&z);
+            if !(ex.rho0.is_finite() && ey.rho0.is_finite()) {
+                return Err(StepError::Overflow);
+            }
+            (ex, ey)
         };
         let mut diag = self.law(&z, t, &env_x, &env_y);
         if !(diag.v.is_finite() && diag.xi.is_finite()) {
+            if self.state.started {
+                // The sample is valid: let the estimate and the clock move on
+                // so that the controller recovers once the estimate is back
+                // in range (one outlier must not stop it for good).
+                self.state.zhat = next;
+                self.advance_clock(t_next, dt);
+            }
             return Err(StepError::Overflow);
         }
         diag.saturation_gap = applied.map(|a| self.state.diag.v - a);
@@ -359,13 +379,19 @@ impl<T: Real, const N: usize> Controller<T, N> {
         st.env_y = env_y;
         st.zhat = next;
         st.diag = diag;
+        self.advance_clock(t_next, dt);
+        Ok(v)
+    }
+
+    #[inline]
+    fn advance_clock(&mut self, t_next: T, dt: T) {
+        let st = &mut self.state;
         if dt == self.config.dt {
             st.k += 1;
         } else {
-            st.t_base = t + dt;
+            st.t_base = t_next;
             st.k = 0;
         }
-        Ok(v)
     }
 
     /// The envelopes latched at the first sample (text after eq. yUyL):

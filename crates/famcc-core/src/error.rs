@@ -66,6 +66,9 @@ pub enum StepError {
     /// `step_state` with the measured error vector.
     NoDifferentiator,
     /// The input was finite but so large that an internal quantity overflowed.
+    /// Before the first step, or when the estimate itself overflowed, nothing
+    /// changed; otherwise the sample was consumed (estimate and clock
+    /// advanced) and the caller should hold its previous output.
     Overflow,
 }
 
@@ -78,7 +81,7 @@ impl fmt::Display for StepError {
             StepError::NoDifferentiator => {
                 "step(e) at order >= 2 needs a differentiator; use step_state(z) for state feedback"
             }
-            StepError::Overflow => "input too large: an internal value overflowed; state unchanged",
+            StepError::Overflow => "input too large: an internal value overflowed; hold the previous output",
         })
     }
 }
