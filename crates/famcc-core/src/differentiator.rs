@@ -544,7 +544,7 @@ fn unbalance<T: Real, const N: usize>(
     let pow = |k: i64| -> f64 {
         // k is within +-(N-1); clamp keeps the cast lossless for any N.
         let k = k.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
-        mu.powi(k)
+        num_traits::Float::powi(mu, k)
     };
     for (i, ((prow, p0row), (g, g0))) in phi
         .iter_mut()

@@ -106,6 +106,15 @@ impl<T: Real> Feedback<T> {
                 if !(r_t > r_1 && r_t.is_finite()) {
                     return Err(ConfigError::new("r_t", "must be finite and > r_1"));
                 }
+                let (a, b) = Self::exponent_coeffs(r_b, r_1, r_t);
+                let margin = ve_monotonicity_margin(a, b, r_b);
+                if margin.is_nan() || margin <= T::zero() {
+                    return Err(ConfigError::new(
+                        "r_b",
+                        "too small for this r_1, r_t: h must be strictly decreasing (paper Step B1, \
+                         property 1); raise r_b or lower (r_1 - r_b)/(r_t - r_1)",
+                    ));
+                }
                 Ok(())
             }
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
@@ -142,12 +151,10 @@ impl<T: Real> Feedback<T> {
             Feedback::FixedTime { alpha, p, beta, q } => -(alpha * spow(s, p) + beta * spow(s, q)),
             Feedback::VariableExponent { k, r_b, r_1, r_t } => {
                 let (a, b) = Self::exponent_coeffs(r_b, r_1, r_t);
-                let s2 = s * s;
-                -k * spow(s, a * s2 / (T::one() + b * s2) + r_b)
+                -k * spow(s, var_exponent(s, a, b, r_b))
             }
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
-                let s2 = s * s;
-                -beta * spow(s, lambda * s2 / (T::one() + mu * s2))
+                -beta * spow(s, var_exponent(s, lambda, mu, T::zero()))
             }
         }
     }
@@ -161,14 +168,10 @@ impl<T: Real> Feedback<T> {
             Feedback::FixedTime { alpha, p, beta, q } => -(s.signed_pow(p) * alpha + s.signed_pow(q) * beta),
             Feedback::VariableExponent { k, r_b, r_1, r_t } => {
                 let (a, b) = Self::exponent_coeffs(r_b, r_1, r_t);
-                let s2 = s * s;
-                let r = (s2 * a) / (s2 * b + T::one()) + r_b;
-                s.signed_pow_jet(&r) * (-k)
+                var_spow_jet(s, a, b, r_b) * (-k)
             }
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
-                let s2 = s * s;
-                let r = (s2 * lambda) / (s2 * mu + T::one());
-                s.signed_pow_jet(&r) * (-beta)
+                var_spow_jet(s, lambda, mu, T::zero()) * (-beta)
             }
         }
     }
@@ -215,4 +218,108 @@ pub fn spow<T: Real>(x: T, p: T) -> T {
     } else {
         T::zero()
     }
+}
+
+/// The variable exponent `r(s) = a s^2/(1 + b s^2) + r0`, written as
+/// `a/(b + (1/s)^2) + r0` for `|s| > 1` so that `s^2` cannot overflow (the
+/// law must stay defined, e.g. `-inf`, not NaN, at `|s| = 1e200`).
+#[inline]
+fn var_exponent<T: Real>(s: T, a: T, b: T, r0: T) -> T {
+    if s.abs() <= T::one() {
+        let s2 = s * s;
+        a * s2 / (T::one() + b * s2) + r0
+    } else {
+        let w = s.recip();
+        a / (b + w * w) + r0
+    }
+}
+
+/// `|s|^{r(s)} sign(s)` on a jet, with `r(s) = a s^2/(1 + b s^2) + r0`.
+///
+/// `s^2` is never formed alone: it underflows below `|s| = 1e-154` (which would
+/// drop the `r(s)/s` term of the derivative) and overflows above `1e154`
+/// (NaN). For `|s| <= 1` the magnitude is `|s|^{r0} exp(g(s) s ln|s|)` with
+/// `g(s) = a s/(1 + b s^2)`: the exponential factor lies in `(0, 1]` and the
+/// singular power is a plain [`Jet::powf`]. For `|s| > 1` it is
+/// `exp((a/(b + w^2) + r0) ln|s|)` with `w = 1/s`.
+#[inline]
+fn var_spow_jet<T: Real, const K: usize>(s: Jet<T, K>, a: T, b: T, r0: T) -> Jet<T, K> {
+    let s0 = s.value();
+    if s0 == T::zero() {
+        // Only the exponent's value matters at 0 (see `Jet::signed_pow_jet`).
+        return s.signed_pow_jet(&Jet::constant(r0));
+    }
+    let m = s.abs();
+    let mag = if s0.abs() <= T::one() {
+        let g = (s * a) / (s * s * b + T::one());
+        let var = (g * x_ln_abs_x(s)).exp();
+        if r0 == T::zero() {
+            var
+        } else {
+            m.powf(r0) * var
+        }
+    } else {
+        let w = s.recip();
+        (((w * w + b).recip() * a + r0) * m.ln()).exp()
+    };
+    if s0 > T::zero() {
+        mag
+    } else {
+        -mag
+    }
+}
+
+/// `s ln|s|` on a jet (`s != 0`), built from its derivative `s' (1 + ln|s|)`:
+/// its first derivative stays finite even for a subnormal `s`, where the
+/// `s'/s` inside `ln|s|` overflows.
+#[inline]
+fn x_ln_abs_x<T: Real, const K: usize>(s: Jet<T, K>) -> Jet<T, K> {
+    let s0 = s.value();
+    let rate = (s.shift() * (s.abs().ln() + T::one())).taylor();
+    let mut c = [T::zero(); K];
+    for (k, ck) in c.iter_mut().enumerate() {
+        *ck = if k == 0 {
+            s0 * s0.abs().ln()
+        } else {
+            rate.get(k - 1).copied().unwrap_or_else(T::zero) / T::c(k as f64)
+        };
+    }
+    Jet::from_taylor(c)
+}
+
+/// `min_{0<u<1} phi(u)` with `phi(u) = r_b (1 + b u)^2 + a u (1 + b u + ln u)`.
+///
+/// For `s = sqrt(u)` in `(0, 1)`, `d/ds |s|^{r(s)} > 0` (the variable-exponent
+/// law strictly decreasing, paper Step B1 property 1) is equivalent to
+/// `phi(u) > 0`; for `|s| >= 1` it always holds. `phi'(u) = a psi(ln u)` with
+/// `psi(v) = v + 2 + 2 b e^v + c (1 + b e^v)`, `c = 2 r_b b / a`, increasing in
+/// `v`, so the minimum is at the unique root of `psi`, found by bisection on
+/// `[-3 - c - 2b - c b, -2 - c]` (`psi` is negative at the left end, positive
+/// at the right end). Not finite (so the law is rejected) for invalid inputs.
+fn ve_monotonicity_margin<T: Real>(a: T, b: T, r_b: T) -> T {
+    let one = T::one();
+    let two = T::c(2.0);
+    let c = two * r_b * b / a;
+    let psi = |v: T| v + two + two * b * v.exp() + c * (one + b * v.exp());
+    let mut hi = -two - c;
+    let mut lo = hi - one - two * b - c * b;
+    for _ in 0..200 {
+        let mid = (lo + hi) / two;
+        if !(mid > lo && mid < hi) {
+            break;
+        }
+        if psi(mid) < T::zero() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let u = hi.exp();
+    // u underflows to 0 only when the minimum sits at u -> 0, where phi -> r_b.
+    let dip = if u > T::zero() {
+        a * u * (one + b * u + u.ln())
+    } else {
+        T::zero()
+    };
+    r_b * (one + b * u) * (one + b * u) + dip
 }

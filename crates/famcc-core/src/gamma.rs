@@ -22,10 +22,22 @@ pub enum Gamma {
 
 impl Gamma {
     /// `Gamma(xi)` for `|xi| < 1` (infinite at `|xi| = 1`).
+    ///
+    /// The log map is evaluated on `|xi|` and the sign restored, so it is
+    /// exactly odd and equally accurate near `-1` and `+1` whichever `atanh`
+    /// backs the float type (std's `atanh` is `ln_1p(2x/(1-x))/2`, which
+    /// cancels for `x` near `-1`).
     #[inline]
     pub fn eval<T: Real>(self, xi: T) -> T {
         match self {
-            Gamma::Log => T::c(2.0) * xi.atanh(),
+            Gamma::Log => {
+                let g = T::c(2.0) * xi.abs().atanh();
+                if xi < T::zero() {
+                    -g
+                } else {
+                    g
+                }
+            }
             Gamma::Rational => xi / ((T::one() + xi) * (T::one() - xi)),
         }
     }

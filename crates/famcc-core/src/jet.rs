@@ -192,7 +192,9 @@ impl<T: Real, const K: usize> Jet<T, K> {
             set(&mut r, k, acc / T::c(k as f64));
         }
         let x0 = self.value();
-        Self { c: scale_by_exp(r, x0.exp(), || x0) }
+        Self {
+            c: scale_by_exp(r, x0.exp(), || x0),
+        }
     }
 
     /// `ln(x)`, for a positive value.
@@ -213,13 +215,28 @@ impl<T: Real, const K: usize> Jet<T, K> {
 
     /// `x^p` for a positive value and a constant exponent.
     ///
-    /// The recurrence runs on `(x/x0)^p` (leading coefficient 1) and is scaled
-    /// by `x0^p` at the end, so the derivatives stay finite and accurate where
-    /// `x0^p` overflows or underflows but they do not (e.g. `x^2` at
-    /// `x = 1e200`: value `inf`, first derivative `2e200 x'`).
+    /// Where `x0^p` itself overflows or underflows (e.g. `x^2` at `x = 1e200`:
+    /// value `inf`, first derivative `2e200 x'`), the recurrence runs on
+    /// `(x/x0)^p` and each coefficient is rescaled by `x0^p` through logs, so
+    /// the first derivative stays finite and accurate (and exact zeros stay
+    /// zero); higher derivatives stay finite but may lose accuracy there.
     #[inline]
     pub fn powf(&self, p: T) -> Self {
         let x0 = self.value();
+        let y0 = x0.powf(p);
+        if y0.is_normal() {
+            let mut y = [T::zero(); K];
+            set(&mut y, 0, y0);
+            for k in 1..K {
+                let mut acc = T::zero();
+                for j in 1..=k {
+                    let w = p * T::c(j as f64) - T::c((k - j) as f64);
+                    acc = acc + w * at(&self.c, j) * at(&y, k - j);
+                }
+                set(&mut y, k, acc / (T::c(k as f64) * x0));
+            }
+            return Self { c: y };
+        }
         let mut r = [T::zero(); K];
         set(&mut r, 0, T::one());
         for k in 1..K {
@@ -230,7 +247,9 @@ impl<T: Real, const K: usize> Jet<T, K> {
             }
             set(&mut r, k, acc / T::c(k as f64));
         }
-        Self { c: scale_by_exp(r, x0.powf(p), || p * x0.ln()) }
+        Self {
+            c: scale_by_exp(r, y0, || p * x0.ln()),
+        }
     }
 
     /// `|x|`. At a zero value the sign of the first nonzero coefficient is

@@ -163,6 +163,11 @@ impl<T: Real> SkewedLaw<T> {
             SkewKind::Smooth => self.feedback.eval_jet(s) + t1 * sk.eps_s,
             SkewKind::Nonsingular { .. } => {
                 let t2 = sk.transition.interval_jet(s / sk.eps_z);
+                if t2 == Jet::constant(T::one()) {
+                    // Outside +-eps_z: exactly h_p + T1 eps_s. Skipping the
+                    // products avoids 0 * inf where h_p overflows (|s| ~ 1e200).
+                    return self.feedback.eval_jet(s) + t1 * sk.eps_s;
+                }
                 let lin = (-t2 + T::one()) * s * (-self.k_p);
                 if t2.is_zero() {
                     // Every derivative of T2 vanishes: skip the singular branch

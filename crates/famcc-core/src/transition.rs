@@ -74,6 +74,11 @@ pub fn single_jet<T: Real, const K: usize>(z: Jet<T, K>) -> Jet<T, K> {
 
 impl Transition {
     /// The double-ended transition `S(z)` (Definition 2).
+    ///
+    /// For `z > 1/2` it is evaluated as `1 - S(1 - z)` (exact symmetry of all
+    /// four transitions; `1 - z` is exact there), which keeps `S <= 1` (the
+    /// quintic's direct form exceeds 1 just below `z = 1`) and makes
+    /// `S(z) + S(1 - z) = 1` hold to rounding.
     #[inline]
     pub fn double<T: Real>(self, z: T) -> T {
         if z <= T::zero() {
@@ -82,24 +87,26 @@ impl Transition {
         if z >= T::one() {
             return T::one();
         }
+        if z > T::c(0.5) {
+            return T::one() - self.rising(T::one() - z);
+        }
+        self.rising(z)
+    }
+
+    /// `S(z)` for `0 < z <= 1/2`.
+    #[inline]
+    fn rising<T: Real>(self, z: T) -> T {
         let one = T::one();
         let two = T::c(2.0);
         match self {
             Transition::Exponential => {
+                // w >= 0: S = q / (1 + q) with q = exp(-w) <= 1.
                 let w = (one - two * z) / (z * (one - z));
-                if w >= T::zero() {
-                    // z <= 1/2: S = q / (1 + q) with q = exp(-w) <= 1.
-                    if -w < T::ln_min_positive() {
-                        return T::zero();
-                    }
-                    let q = (-w).exp();
-                    q / (one + q)
-                } else {
-                    if w < T::ln_min_positive() {
-                        return one;
-                    }
-                    one / (one + w.exp())
+                if -w < T::ln_min_positive() {
+                    return T::zero();
                 }
+                let q = (-w).exp();
+                q / (one + q)
             }
             Transition::Cubic => z * z * (T::c(3.0) - two * z),
             Transition::Quintic => z * z * z * (z * (z * T::c(6.0) - T::c(15.0)) + T::c(10.0)),
@@ -152,9 +159,7 @@ impl Transition {
                 q / (q + one)
             }
             Transition::Cubic => z * z * (z * (-two) + T::c(3.0)),
-            Transition::Quintic => {
-                z * z * z * (z * (z * T::c(6.0) - T::c(15.0)) + T::c(10.0))
-            }
+            Transition::Quintic => z * z * z * (z * (z * T::c(6.0) - T::c(15.0)) + T::c(10.0)),
             Transition::Sine => {
                 let (s, _) = (z * T::FRAC_PI_2()).sin_cos();
                 s * s
