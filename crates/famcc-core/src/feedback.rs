@@ -212,9 +212,9 @@ impl<T: Real> Feedback<T> {
 #[inline]
 pub fn spow<T: Real>(x: T, p: T) -> T {
     if x > T::zero() {
-        x.powf(p)
+        x.powr(p)
     } else if x < T::zero() {
-        -(-x).powf(p)
+        -(-x).powr(p)
     } else {
         T::zero()
     }

@@ -24,6 +24,27 @@ pub trait Real:
     fn root(self) -> Self {
         num_traits::Float::sqrt(self)
     }
+    /// `self^p` for `self >= 0`, with exact fast paths for the exponents the
+    /// paper's laws use (`1/2`, `1`, `3/2`, `2`, `3`): a square root or
+    /// products instead of a general `pow`.
+    #[inline(always)]
+    fn powr(self, p: Self) -> Self {
+        let half = Self::c(0.5);
+        let two = Self::c(2.0);
+        if p == half {
+            self.root()
+        } else if p == two {
+            self * self
+        } else if p == Self::one() {
+            self
+        } else if p == Self::c(1.5) {
+            self * self.root()
+        } else if p == Self::c(3.0) {
+            self * self * self
+        } else {
+            num_traits::Float::powf(self, p)
+        }
+    }
     /// `ln` of the smallest positive normal number: `exp(x)` below this is
     /// subnormal or zero.
     fn ln_min_positive() -> Self;

@@ -223,7 +223,7 @@ impl<T: Real, const K: usize> Jet<T, K> {
     #[inline]
     pub fn powf(&self, p: T) -> Self {
         let x0 = self.value();
-        let y0 = x0.powf(p);
+        let y0 = x0.powr(p);
         if y0.is_normal() {
             let mut y = [T::zero(); K];
             set(&mut y, 0, y0);
