@@ -16,19 +16,23 @@ pub struct ControllerBank {
     cores: BankCores,
     spec: Spec,
     n: usize,
+    /// Overflowed steps in the last call of `step`.
+    #[pyo3(get)]
+    overflows: usize,
 }
 
-/// Steps every controller; returns the indices whose step failed (their
-/// state is unchanged and their output is NaN).
-fn step_all(cores: &mut BankCores, e: &[f64], out: &mut [f64]) -> Vec<usize> {
-    let mut failed = Vec::new();
+/// Steps every controller; returns how many steps overflowed. Those
+/// controllers consumed their sample (famcc-core's `StepError::Overflow`) and
+/// their output is the previous one, as a caller would hold it.
+fn step_all(cores: &mut BankCores, e: &[f64], out: &mut [f64]) -> usize {
+    let mut failed = 0;
     with_bank!(cores, v => {
-        for (i, ((c, e), o)) in v.iter_mut().zip(e).zip(out.iter_mut()).enumerate() {
+        for ((c, e), o) in v.iter_mut().zip(e).zip(out.iter_mut()) {
             match c.step(Real::c(*e)) {
                 Ok(x) => *o = x.to_f64_lossless(),
                 Err(_) => {
-                    *o = f64::NAN;
-                    failed.push(i);
+                    *o = c.diagnostics().v.to_f64_lossless();
+                    failed += 1;
                 }
             }
         }
@@ -39,14 +43,16 @@ fn step_all(cores: &mut BankCores, e: &[f64], out: &mut [f64]) -> Vec<usize> {
 #[pymethods]
 impl ControllerBank {
     #[new]
-    fn new(controller: &PyController, n: usize) -> PyResult<Self> {
-        if n == 0 {
-            return Err(ConfigError::new_err("n must be >= 1"));
-        }
+    fn new(controller: &PyController, n: i64) -> PyResult<Self> {
+        let n = usize::try_from(n)
+            .ok()
+            .filter(|n| *n >= 1)
+            .ok_or_else(|| ConfigError::new_err(format!("n must be >= 1 (got {n})")))?;
         Ok(Self {
             cores: controller.core.replicate(n),
             spec: controller.spec.clone(),
             n,
+            overflows: 0,
         })
     }
 
@@ -56,7 +62,8 @@ impl ControllerBank {
 
     /// Steps controller i with e[i]; returns the outputs. Equal to stepping
     /// the copies one by one. Non-finite entries raise `StepError` before any
-    /// controller moves.
+    /// controller moves. A controller whose law overflows on a valid sample
+    /// consumes it and repeats its previous output (counted in `overflows`).
     fn step<'py>(
         &mut self,
         py: Python<'py>,
@@ -80,18 +87,11 @@ impl ControllerBank {
         }
         let mut out = vec![0.0; self.n];
         let cores = &mut self.cores;
-        let failed = if self.n >= DETACH_MIN {
+        self.overflows = if self.n >= DETACH_MIN {
             py.detach(|| step_all(cores, e, &mut out))
         } else {
             step_all(cores, e, &mut out)
         };
-        if let Some(i) = failed.first() {
-            return Err(StepError::new_err(format!(
-                "{} controllers could not step (first: index {i}): an internal value overflowed; \
-                 those controllers are unchanged, the others stepped",
-                failed.len()
-            )));
-        }
         Ok(PyArray1::from_vec(py, out))
     }
 
@@ -109,7 +109,8 @@ impl ControllerBank {
     }
 
     /// A copy of controller i (as a `Controller`).
-    fn controller(&self, i: usize) -> PyResult<PyController> {
+    fn controller(&self, i: i64) -> PyResult<PyController> {
+        let i = usize::try_from(i).unwrap_or(usize::MAX);
         if i >= self.n {
             return Err(pyo3::exceptions::PyIndexError::new_err(format!(
                 "index {i} out of range for {} controllers",

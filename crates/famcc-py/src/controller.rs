@@ -25,6 +25,8 @@ pub struct Spec {
     pub k_u: f64,
     pub gamma: Gamma,
     pub rho_e: Option<f64>,
+    /// Keep famcc-core's default margin (min(0.01, eps/10)).
+    pub rho_auto: bool,
     pub latch: Latch,
     pub transition: Transition,
     pub differentiator: Option<HighGain>,
@@ -69,7 +71,9 @@ impl Spec {
         )?;
         cfg.k0 = T::c(self.k0);
         cfg.gamma = self.gamma;
-        cfg.rho_e = self.rho_e.map(T::c);
+        if !self.rho_auto {
+            cfg.rho_e = self.rho_e.map(T::c);
+        }
         cfg.latch = self.latch;
         cfg.transition = self.transition;
         if let Some(h) = &self.differentiator {
@@ -244,6 +248,21 @@ impl Diagnostics {
     }
 }
 
+/// A finite f64 that is out of range for an f32 core is an overflow, not a
+/// non-finite input.
+#[inline(always)]
+fn check_range<T: Real>(e: f64, ec: T, applied: Option<f64>, ac: Option<T>) -> Result<(), core_::StepError> {
+    if e.is_finite() && !ec.is_finite() {
+        return Err(core_::StepError::Overflow);
+    }
+    if let (Some(a), Some(ac)) = (applied, ac) {
+        if a.is_finite() && !ac.is_finite() {
+            return Err(core_::StepError::Overflow);
+        }
+    }
+    Ok(())
+}
+
 /// Length of the flat state vector for an order.
 fn state_len(order: usize) -> usize {
     7 + order
@@ -299,13 +318,26 @@ impl Core {
         with_core!(self, c => c.estimate().len())
     }
 
+    /// The flexible-boundary margin in effect.
+    pub fn rho_e(&self) -> Option<f64> {
+        with_core!(self, c => c.config().rho_e.map(|x| x.to_f64_lossless()))
+    }
+
     #[inline]
     pub fn step(&mut self, e: f64, applied: Option<f64>) -> Result<f64, core_::StepError> {
-        with_core!(self, c => c.step_applied(Real::c(e), applied.map(Real::c)).map(|v| v.to_f64_lossless()))
+        with_core!(self, c => {
+            let (ec, ac) = (Real::c(e), applied.map(Real::c));
+            check_range(e, ec, applied, ac)?;
+            c.step_applied(ec, ac).map(|v| v.to_f64_lossless())
+        })
     }
 
     fn step_dt(&mut self, e: f64, dt: f64, applied: Option<f64>) -> Result<f64, core_::StepError> {
-        with_core!(self, c => c.step_dt(Real::c(e), Real::c(dt), applied.map(Real::c)).map(|v| v.to_f64_lossless()))
+        with_core!(self, c => {
+            let (ec, ac) = (Real::c(e), applied.map(Real::c));
+            check_range(e, ec, applied, ac)?;
+            c.step_dt(ec, Real::c(dt), ac).map(|v| v.to_f64_lossless())
+        })
     }
 
     fn step_state(&mut self, z: &[f64], applied: Option<f64>) -> PyResult<f64> {
@@ -376,6 +408,15 @@ fn parse_per_stage<'py, T>(
 pub enum DiffArg<'py> {
     Gain(Bound<'py, HighGain>),
     Name(String),
+    Other(Bound<'py, PyAny>),
+}
+
+/// The `rho_e` argument: a float, the string "auto", or None.
+#[derive(FromPyObject)]
+pub enum RhoArg<'py> {
+    Value(f64),
+    Name(String),
+    Other(Bound<'py, PyAny>),
 }
 
 fn choice(value: &str, name: &str, allowed: &[&'static str]) -> PyResult<&'static str> {
@@ -400,12 +441,12 @@ fn finite(x: f64, name: &str) -> PyResult<f64> {
 impl PyController {
     #[new]
     #[pyo3(signature = (order, dt, feedback = None, *, skew = None, constraint = "longitudinal", eps,
-        settle_time = 1.0, k0 = 2.0, k_u, gamma = "log", rho_e = Some(0.01), differentiator = Some(DiffArg::Name(String::from("auto"))),
+        settle_time = 1.0, k0 = 2.0, k_u, gamma = "log", rho_e = Some(RhoArg::Name(String::from("auto"))), differentiator = Some(DiffArg::Name(String::from("auto"))),
         latch = "paper", transition = "exponential", initial_derivatives = None, dtype = "float64"))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        order: usize,
+        order: i64,
         dt: f64,
         feedback: Option<&Bound<'_, PyAny>>,
         skew: Option<&Bound<'_, PyAny>>,
@@ -415,21 +456,33 @@ impl PyController {
         k0: f64,
         k_u: f64,
         gamma: &str,
-        rho_e: Option<f64>,
+        rho_e: Option<RhoArg<'_>>,
         differentiator: Option<DiffArg<'_>>,
         latch: &str,
         transition: &str,
         initial_derivatives: Option<Vec<f64>>,
         dtype: &str,
     ) -> PyResult<Self> {
-        if !(1..=MAX_ORDER).contains(&order) {
-            return Err(ConfigError::new_err(format!(
-                "order must be between 1 and {MAX_ORDER} (got {order})"
-            )));
-        }
+        let order = match usize::try_from(order) {
+            Ok(n) if (1..=MAX_ORDER).contains(&n) => n,
+            _ => {
+                return Err(ConfigError::new_err(format!(
+                    "order must be between 1 and {MAX_ORDER} (got {order})"
+                )))
+            }
+        };
         let n = order - 1;
         let laws: Vec<Law> = match feedback {
-            Some(f) => parse_per_stage(f, n, "feedback", Law::extract)?,
+            Some(f) if n == 0 => {
+                let empty = f.len().map(|l| l == 0).unwrap_or(false);
+                if !empty {
+                    return Err(ConfigError::new_err(
+                        "feedback must be omitted (or empty) at order 1: there are no stages",
+                    ));
+                }
+                vec![]
+            }
+            Some(f) => parse_per_stage(f, n, "feedback", |o| Law::extract_named(o, "feedback"))?,
             None if n == 0 => vec![],
             None => {
                 return Err(ConfigError::new_err(
@@ -486,6 +539,12 @@ impl PyController {
                     "differentiator must be a HighGain, 'auto' or None (got {s:?})"
                 )))
             }
+            Some(DiffArg::Other(o)) => {
+                return Err(ConfigError::new_err(format!(
+                    "differentiator must be a HighGain, 'auto' or None (got {})",
+                    o.repr()?
+                )))
+            }
             Some(DiffArg::Gain(h)) => {
                 let h = h.get().clone();
                 if h.a.len() != order {
@@ -505,7 +564,23 @@ impl PyController {
                 )));
             }
         }
-        let spec = Spec {
+        let (rho_e, rho_auto) = match rho_e {
+            None => (None, false),
+            Some(RhoArg::Value(v)) => (Some(v), false),
+            Some(RhoArg::Name(s)) if s == "auto" => (None, true),
+            Some(RhoArg::Name(s)) => {
+                return Err(ConfigError::new_err(format!(
+                    "rho_e must be a float, 'auto' or None (got {s:?})"
+                )))
+            }
+            Some(RhoArg::Other(o)) => {
+                return Err(ConfigError::new_err(format!(
+                    "rho_e must be a float, 'auto' or None (got {})",
+                    o.repr()?
+                )))
+            }
+        };
+        let mut spec = Spec {
             order,
             dt: finite(dt, "dt")?,
             laws: laws.into_iter().zip(skews).collect(),
@@ -516,6 +591,7 @@ impl PyController {
             k_u,
             gamma,
             rho_e,
+            rho_auto,
             latch,
             transition,
             differentiator,
@@ -524,6 +600,8 @@ impl PyController {
         };
         let _ = py;
         let core = Core::build(&spec)?;
+        spec.rho_e = core.rho_e();
+        spec.rho_auto = false;
         Ok(Self { core, spec })
     }
 

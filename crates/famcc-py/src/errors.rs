@@ -15,7 +15,8 @@ create_exception!(
     _core,
     StepError,
     PyValueError,
-    "A step that could not be taken (non-finite input, overflow); the controller's state is unchanged."
+    "A step that could not be taken. For a non-finite input, `applied` or `dt` the state is unchanged; \
+     an overflow on a valid sample after the first step consumes the sample (hold the previous output)."
 );
 
 /// famcc-core's configuration error as a Python `ConfigError`.

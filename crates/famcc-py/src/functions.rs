@@ -87,8 +87,8 @@ impl Skewed {
     }
 }
 
-fn prepare(law: &Bound<'_, PyAny>, skew: Option<&Bound<'_, PyAny>>) -> PyResult<SkewedLaw<f64>> {
-    let l = Law::extract(law)?;
+fn prepare(law: &Bound<'_, PyAny>, skew: Option<&Bound<'_, PyAny>>, name: &str) -> PyResult<SkewedLaw<f64>> {
+    let l = Law::extract_named(law, name)?;
     let s = match skew {
         Some(s) => SkewSpec::extract(s)?,
         None => None,
@@ -108,7 +108,7 @@ pub fn skewed(law: &Bound<'_, PyAny>, skew: Option<&Bound<'_, PyAny>>) -> PyResu
             .unwrap_or_else(|| "None".into())
     );
     Ok(Skewed {
-        law: prepare(law, skew)?,
+        law: prepare(law, skew, "law")?,
         desc,
     })
 }
@@ -159,7 +159,7 @@ pub fn manifold_values<'py>(
     let prepared: Vec<SkewedLaw<f64>> = laws
         .iter()
         .zip(skews.iter())
-        .map(|(l, s)| prepare(l, s.as_ref()))
+        .map(|(l, s)| prepare(l, s.as_ref(), "feedback"))
         .collect::<PyResult<_>>()?;
     if z.iter().any(|v| !v.is_finite()) {
         return Err(ConfigError::new_err("z must be finite"));

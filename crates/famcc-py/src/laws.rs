@@ -125,6 +125,11 @@ pub enum Law {
 
 impl Law {
     pub fn extract(obj: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Self::extract_named(obj, "law")
+    }
+
+    /// Like `extract`; errors name the argument `name`.
+    pub fn extract_named(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Self> {
         if let Ok(l) = obj.cast::<Linear>() {
             return Ok(Law::Linear(*l.get()));
         }
@@ -141,8 +146,13 @@ impl Law {
             return Ok(Law::Moulay(*l.get()));
         }
         Err(crate::errors::ConfigError::new_err(format!(
-            "feedback must be a law (Linear, FiniteTime, FixedTime, VariableExponent, \
-             MoulayDiscontinuous) or a list of them, got {}",
+            "{name} must be a law (Linear, FiniteTime, FixedTime, VariableExponent, \
+             MoulayDiscontinuous){}, got {}",
+            if name == "feedback" {
+                " or a list of them"
+            } else {
+                ""
+            },
             obj.repr()?
         )))
     }

@@ -15,6 +15,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_ORDER", controller::MAX_ORDER)?;
+    for ty in [
+        py.get_type::<errors::ConfigError>(),
+        py.get_type::<errors::StepError>(),
+    ] {
+        // Importable (and so picklable) as famcc._core.<name>.
+        ty.setattr("__module__", "famcc._core")?;
+    }
     m.add("ConfigError", py.get_type::<errors::ConfigError>())?;
     m.add("StepError", py.get_type::<errors::StepError>())?;
     m.add_class::<laws::Linear>()?;
