@@ -175,9 +175,19 @@ impl<T: Real, const N: usize> Controller<T, N> {
         &self.config
     }
 
-    /// What the last step did.
-    pub fn diagnostics(&self) -> &Diagnostics<T, N> {
-        &self.state.diag
+    /// What the last step did. The manifold values (`s`, `stages`,
+    /// `s_prev`, `ds_prev`) are evaluated here from the estimate the step
+    /// used, so `step()` does not pay for values only a reader needs.
+    pub fn diagnostics(&self) -> Diagnostics<T, N> {
+        let mut d = self.state.diag;
+        if self.state.started {
+            let m = manifold::evaluate(&d.z_hat, self.config.laws());
+            d.s = m.s();
+            d.stages = m.stages;
+            d.s_prev = m.s_prev;
+            d.ds_prev = m.ds_prev;
+        }
+        d
     }
 
     /// The time of the next sample, seconds.
@@ -426,8 +436,13 @@ impl<T: Real, const N: usize> Controller<T, N> {
     #[inline]
     fn law(&self, z: &[T; N], t: T, env_x: &Envelope<T>, env_y: &Envelope<T>) -> Diagnostics<T, N> {
         let c = &self.config;
-        let m = manifold::evaluate(z, c.laws());
         let kind = c.constraint.kind();
+        // LoMC needs s; LaMC and OMC only (s_{n-1}, ds_{n-1}).
+        let m = if kind == ConstraintKind::Longitudinal {
+            manifold::evaluate(z, c.laws())
+        } else {
+            manifold::evaluate_prev(z, c.laws())
+        };
         let x_u = if kind == ConstraintKind::Longitudinal {
             T::zero()
         } else {
@@ -467,10 +482,11 @@ impl<T: Real, const N: usize> Controller<T, N> {
             t,
             xi,
             xi_nominal,
-            s: m.s(),
-            stages: m.stages,
-            s_prev: m.s_prev,
-            ds_prev: m.ds_prev,
+            // Filled in by `diagnostics()`.
+            s: T::zero(),
+            stages: [T::zero(); N],
+            s_prev: T::zero(),
+            ds_prev: T::zero(),
             bounds: (factor * x_u, factor * y_u),
             nominal_bounds: (x_u, y_u),
             z_hat: *z,

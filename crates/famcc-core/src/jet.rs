@@ -222,6 +222,17 @@ impl<T: Real, const K: usize> Jet<T, K> {
     /// zero); higher derivatives stay finite but may lose accuracy there.
     #[inline]
     pub fn powf(&self, p: T) -> Self {
+        if p == T::c(2.0) {
+            return *self * *self;
+        }
+        if p == T::one() {
+            return *self;
+        }
+        if p == T::c(0.5) {
+            if let Some(r) = self.sqrt_normal() {
+                return r;
+            }
+        }
         let x0 = self.value();
         let y0 = x0.powr(p);
         if y0.is_normal() {
@@ -250,6 +261,27 @@ impl<T: Real, const K: usize> Jet<T, K> {
         Self {
             c: scale_by_exp(r, y0, || p * x0.ln()),
         }
+    }
+
+    /// `sqrt(x)` by the recurrence `y_k = (x_k - sum_{j=1}^{k-1} y_j y_{k-j}) / (2 y_0)`,
+    /// when `sqrt(x_0)` is a normal number (`None` otherwise: use `powf`).
+    #[inline]
+    fn sqrt_normal(&self) -> Option<Self> {
+        let y0 = self.value().root();
+        if !y0.is_normal() {
+            return None;
+        }
+        let inv = (T::c(2.0) * y0).recip();
+        let mut y = [T::zero(); K];
+        set(&mut y, 0, y0);
+        for k in 1..K {
+            let mut acc = at(&self.c, k);
+            for j in 1..k {
+                acc = acc - at(&y, j) * at(&y, k - j);
+            }
+            set(&mut y, k, acc * inv);
+        }
+        Some(Self { c: y })
     }
 
     /// `|x|`. At a zero value the sign of the first nonzero coefficient is

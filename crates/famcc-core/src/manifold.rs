@@ -42,6 +42,23 @@ impl<T: Real, const N: usize> Manifold<T, N> {
 /// treated as stopping the iteration, extra ones are ignored).
 #[inline]
 pub fn evaluate<T: Real, const N: usize>(z: &[T; N], laws: &[SkewedLaw<T>]) -> Manifold<T, N> {
+    evaluate_stages(z, laws, true)
+}
+
+/// Like [`evaluate`] but stops at `s_{n-1}`: `s_prev` and `ds_prev` are set,
+/// `stages` holds `s_1..s_{n-1}` and the last entry (`s`) is left at 0. The
+/// lateral and oblique constraints need no more.
+#[inline]
+pub fn evaluate_prev<T: Real, const N: usize>(z: &[T; N], laws: &[SkewedLaw<T>]) -> Manifold<T, N> {
+    evaluate_stages(z, laws, false)
+}
+
+#[inline(always)]
+fn evaluate_stages<T: Real, const N: usize>(
+    z: &[T; N],
+    laws: &[SkewedLaw<T>],
+    with_last: bool,
+) -> Manifold<T, N> {
     let mut out = Manifold {
         stages: [T::zero(); N],
         s_prev: T::zero(),
@@ -59,6 +76,9 @@ pub fn evaluate<T: Real, const N: usize>(z: &[T; N], laws: &[SkewedLaw<T>]) -> M
             let dv = jet.derivative(1);
             out.s_prev = v;
             out.ds_prev = dv;
+            if !with_last {
+                break;
+            }
             (Jet::constant(dv - law.eval(v)), true)
         } else {
             (jet.shift() - law.eval_jet(jet), false)

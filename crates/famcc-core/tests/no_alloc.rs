@@ -112,7 +112,7 @@ fn exercise<T: Real, const N: usize>(ctrl: &mut Controller<T, N>) -> usize {
             }
             acc = acc + ctrl.step_state(z).unwrap();
             acc = acc + ctrl.step_state_applied(z, Some(acc)).unwrap_or(T::zero());
-            acc = acc + black_box(*ctrl.diagnostics()).v;
+            acc = acc + black_box(ctrl.diagnostics()).v;
         }
         ctrl.reset();
         let _ = black_box(ctrl.step(T::c(0.3)));

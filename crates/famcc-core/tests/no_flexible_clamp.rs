@@ -77,7 +77,7 @@ fn run_checked<T: Real, const N: usize, P: Plant<N>>(
         let v = ctrl
             .step(T::c(e))
             .unwrap_or_else(|err| panic!("step failed at t = {t}: {err}"));
-        let d = *ctrl.diagnostics();
+        let d = ctrl.diagnostics();
         assert!(v.is_finite(), "non-finite output at t = {t}");
         assert_eq!(v, d.v);
         assert!(d.xi.abs() < T::one(), "|xi| = {:?} at t = {t}", d.xi);
@@ -217,7 +217,7 @@ fn clamping_by_state_feedback_is_counted_per_step() {
         assert!(v0 < T::zero());
         for (k, big) in [1e3, -1e3, 1e30, -4.0, 3.0].into_iter().enumerate() {
             let v = c.step_state([T::c(big), T::zero()]).unwrap();
-            let d = *c.diagnostics();
+            let d = c.diagnostics();
             assert_eq!(d.clamp_count, k as u64 + 1, "gamma {gamma:?} z1 = {big}");
             assert!(v.is_finite());
             assert!(d.xi.abs() < T::one() && d.xi.abs() >= T::one() - T::c(2.0) * T::epsilon());

@@ -361,7 +361,7 @@ fn check_ops<const N: usize>(s: &Spec, ops: &[Op]) -> Result<(), TestCaseError> 
             }
             Ok(v) => {
                 prop_assert!(expected_err.is_none(), "{:?} accepted: {:?}", o, expected_err);
-                let d = *c.diagnostics();
+                let d = c.diagnostics();
                 prop_assert!(v.is_finite(), "non-finite output {} for {:?}", v, o);
                 prop_assert_eq!(v.to_bits(), d.v.to_bits());
                 prop_assert!(d.xi.is_finite() && d.xi.abs() < 1.0, "xi = {}", d.xi);

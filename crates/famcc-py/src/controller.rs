@@ -352,7 +352,7 @@ impl Core {
     }
 
     fn diagnostics(&self) -> Diagnostics {
-        with_core!(self, c => Diagnostics::from_core(c.diagnostics()))
+        with_core!(self, c => Diagnostics::from_core(&c.diagnostics()))
     }
 
     fn time(&self) -> f64 {
