@@ -9,6 +9,8 @@ cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
 cargo test -p famcc-core
 cargo build -p famcc-core --no-default-features
+# The C ABI (its own workspace: a no_std staticlib with panic = "abort").
+cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 python3 -m pytest -q
 # famcc-core in f32 on a Cortex-M4F under QEMU, and the C ABI (installs its
 # Debian packages with apt-get when missing).
