@@ -2,35 +2,11 @@
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import math
-import sys
-from pathlib import Path
-from types import ModuleType
 
 import numpy as np
 import pytest
-
-
-def _load(name: str) -> ModuleType:
-    """Import ``famcc.<name>``; fall back to the source file while ``famcc._core`` is unbuilt."""
-    try:
-        return importlib.import_module(f"famcc.{name}")
-    except ImportError:
-        path = Path(__file__).resolve().parents[1] / "python" / "famcc" / f"{name}.py"
-        key = f"_famcc_src_{name}"
-        if key in sys.modules:
-            return sys.modules[key]
-        spec = importlib.util.spec_from_file_location(key, path)
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[key] = module
-        spec.loader.exec_module(module)
-        return module
-
-
-plants = _load("plants")
+from famcc import plants
 
 PAPER_PLANTS = [
     pytest.param(plants.second_order, "paper", id="second-paper"),

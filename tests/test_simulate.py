@@ -2,36 +2,16 @@
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import math
 import sys
-from pathlib import Path
-from types import ModuleType, SimpleNamespace
+from types import SimpleNamespace
 
+import famcc.simulate  # noqa: F401  (the module, not the function famcc.simulate)
 import numpy as np
 import pytest
+from famcc import plants
 
-
-def _load(name: str) -> ModuleType:
-    """Import ``famcc.<name>``; fall back to the source file while ``famcc._core`` is unbuilt."""
-    try:
-        return importlib.import_module(f"famcc.{name}")
-    except ImportError:
-        path = Path(__file__).resolve().parents[1] / "python" / "famcc" / f"{name}.py"
-        key = f"_famcc_src_{name}"
-        if key in sys.modules:
-            return sys.modules[key]
-        spec = importlib.util.spec_from_file_location(key, path)
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[key] = module
-        spec.loader.exec_module(module)
-        return module
-
-
-plants = _load("plants")
-sim = _load("simulate")
+sim = sys.modules["famcc.simulate"]
 simulate, SimResult, Sine = sim.simulate, sim.SimResult, sim.Sine
 
 
