@@ -3,12 +3,14 @@
 
 use crate::controller::{with_bank, BankCores, PyController, Spec};
 use crate::errors::{ConfigError, StepError};
-use famcc_core::Real;
+use famcc_core::{Controller, Real};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 
 /// Batches at least this large release the GIL while stepping.
 const DETACH_MIN: usize = 2048;
+/// Batches at least this large are split across threads.
+const PARALLEL_MIN: usize = 16384;
 
 /// n independent copies of a configured controller.
 #[pyclass(module = "famcc._core")]
@@ -21,23 +23,52 @@ pub struct ControllerBank {
     overflows: usize,
 }
 
-/// Steps every controller; returns how many steps overflowed. Those
+/// Steps one slice of controllers; returns how many steps overflowed. Those
 /// controllers consumed their sample (famcc-core's `StepError::Overflow`) and
 /// their output is the previous one, as a caller would hold it.
-fn step_all(cores: &mut BankCores, e: &[f64], out: &mut [f64]) -> usize {
+fn step_slice<T: Real, const N: usize>(v: &mut [Controller<T, N>], e: &[f64], out: &mut [f64]) -> usize {
     let mut failed = 0;
-    with_bank!(cores, v => {
-        for ((c, e), o) in v.iter_mut().zip(e).zip(out.iter_mut()) {
-            match c.step(Real::c(*e)) {
-                Ok(x) => *o = x.to_f64_lossless(),
-                Err(_) => {
-                    *o = c.diagnostics().v.to_f64_lossless();
-                    failed += 1;
-                }
+    for ((c, e), o) in v.iter_mut().zip(e).zip(out.iter_mut()) {
+        match c.step(T::c(*e)) {
+            Ok(x) => *o = x.to_f64_lossless(),
+            Err(_) => {
+                *o = c.diagnostics().v.to_f64_lossless();
+                failed += 1;
             }
         }
-    });
+    }
     failed
+}
+
+/// Steps every controller, on up to `threads` threads (the controllers are
+/// independent, so the result equals stepping them one by one).
+fn step_all(cores: &mut BankCores, e: &[f64], out: &mut [f64], threads: usize) -> usize {
+    with_bank!(cores, v => {
+        if threads <= 1 {
+            step_slice(v, e, out)
+        } else {
+            let chunk = v.len().div_ceil(threads);
+            std::thread::scope(|s| {
+                let handles: Vec<_> = v
+                    .chunks_mut(chunk)
+                    .zip(e.chunks(chunk).zip(out.chunks_mut(chunk)))
+                    .map(|(cv, (ce, co))| s.spawn(move || step_slice(cv, ce, co)))
+                    .collect();
+                handles.into_iter().map(|h| h.join().unwrap_or(0)).sum()
+            })
+        }
+    })
+}
+
+/// Threads for a batch of `n`: one below `PARALLEL_MIN`, else the machine's
+/// parallelism (at most 8).
+fn threads_for(n: usize) -> usize {
+    if n < PARALLEL_MIN {
+        return 1;
+    }
+    std::thread::available_parallelism()
+        .map(|p| p.get().min(8))
+        .unwrap_or(1)
 }
 
 #[pymethods]
@@ -62,7 +93,8 @@ impl ControllerBank {
 
     /// Steps controller i with e[i]; returns the outputs. Equal to stepping
     /// the copies one by one. Non-finite entries raise `StepError` before any
-    /// controller moves. A controller whose law overflows on a valid sample
+    /// controller moves. Large batches release the GIL and are split across
+    /// threads. A controller whose law overflows on a valid sample
     /// consumes it and repeats its previous output (counted in `overflows`).
     fn step<'py>(
         &mut self,
@@ -88,9 +120,9 @@ impl ControllerBank {
         let mut out = vec![0.0; self.n];
         let cores = &mut self.cores;
         self.overflows = if self.n >= DETACH_MIN {
-            py.detach(|| step_all(cores, e, &mut out))
+            py.detach(|| step_all(cores, e, &mut out, threads_for(e.len())))
         } else {
-            step_all(cores, e, &mut out)
+            step_all(cores, e, &mut out, 1)
         };
         Ok(PyArray1::from_vec(py, out))
     }
