@@ -17,7 +17,7 @@
 //! of range); the estimate and the clock then advance, so the controller
 //! recovers as the estimate decays, and the caller holds its last output.
 //! Without flexible boundaries a too slow sample rate can push `|xi|` to 1:
-//! `xi` is then clamped to `1 - epsilon` (`Gamma` stays finite) and the event
+//! `xi` is then clamped to the largest float below 1 (`Gamma` stays finite) and the event
 //! counted.
 //!
 //! ```
@@ -472,7 +472,8 @@ impl<T: Real, const N: usize> Controller<T, N> {
         };
         let mut xi = xi_nominal / factor;
         let mut clamps = 0;
-        let limit = T::one() - T::epsilon();
+        // The largest float below 1 (SPEC section 2): Gamma stays finite.
+        let limit = T::one() - T::epsilon() * T::c(0.5);
         if xi.abs() > limit {
             xi = if xi > T::zero() { limit } else { -limit };
             clamps = 1;

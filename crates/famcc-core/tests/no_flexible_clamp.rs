@@ -8,7 +8,7 @@
 //! Measured settings where clamping really happens (run with `--nocapture`):
 //! - example 1 (authors' plant, disturbance amplitude 3) sampled at 50 Hz
 //!   (dt = 0.02), limits +-100: 437 of 501 samples clamp (f64 and f32), the
-//!   output chatters at +-k_u Gamma(1 - eps) = +-183.7 (f32: +-83.2) and
+//!   output chatters at +-k_u Gamma(1 - eps/2) = +-187.1 (f32: +-86.6) and
 //!   never settles; with `rho_e = 0.01` nothing clamps and |z1| < 0.1 from
 //!   0.8 s on;
 //! - example 1 at 1 kHz with the disturbance scaled by 10 (amplitude 30),
@@ -138,7 +138,7 @@ fn example1_at_50_hz_clamps_only_without_flexible_boundary() {
     assert!(!r.plant_escaped);
     assert_eq!(r.steps, 501);
     assert!(r.clamps > 100, "expected frequent clamping, got {}", r.clamps);
-    // The clamped output: k_u Gamma(1 - eps) = 5 * 2 atanh(1 - 2^-52) ~ 183.7.
+    // The clamped output: k_u Gamma(1 - eps/2) = 5 * 2 atanh(1 - 2^-53) ~ 187.1.
     assert!(r.max_abs_v > 150.0 && r.max_abs_v < 200.0, "{}", r.max_abs_v);
 
     let mut flex = example1::<f64>(Variant::Code, dt);
