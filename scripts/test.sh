@@ -11,6 +11,7 @@ cargo test -p famcc-core
 cargo build -p famcc-core --no-default-features
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
+ruff check python tests benches examples
 python3 -m pytest -q
 # famcc-core in f32 on a Cortex-M4F under QEMU, and the C ABI (installs its
 # Debian packages with apt-get when missing).
