@@ -384,6 +384,40 @@ impl<T: Real, const K: usize> Jet<T, K> {
         (Self { c: s }, Self { c })
     }
 
+    /// The logistic function `1/(1 + exp(-x))`, by its ODE `y' = y (1 - y) x'`:
+    /// one scalar `exp` and an O(K^2) recurrence, no jet `exp` or division.
+    /// Accurate where `y <= 1/2` (`x <= 0`); near `y = 1` the factor `1 - y`
+    /// cancels, so callers reflect (`1 - logistic(-x)`) there.
+    #[inline]
+    pub fn logistic(&self) -> Self {
+        let x0 = self.value();
+        let one = T::one();
+        let y0 = if x0 >= T::zero() {
+            one / (one + (-x0).exp())
+        } else {
+            let q = x0.exp();
+            q / (one + q)
+        };
+        let mut y = [T::zero(); K];
+        let mut g = [T::zero(); K];
+        set(&mut y, 0, y0);
+        set(&mut g, 0, y0 * (one - y0));
+        for k in 1..K {
+            let mut acc = T::zero();
+            for j in 1..=k {
+                acc = acc + T::c(j as f64) * at(&self.c, j) * at(&g, k - j);
+            }
+            let yk = acc / T::c(k as f64);
+            set(&mut y, k, yk);
+            let mut sq = T::zero();
+            for i in 0..=k {
+                sq = sq + at(&y, i) * at(&y, k - i);
+            }
+            set(&mut g, k, yk - sq);
+        }
+        Self { c: y }
+    }
+
     /// `1 / x`.
     #[inline]
     pub fn recip(&self) -> Self {

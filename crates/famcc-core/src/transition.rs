@@ -155,8 +155,8 @@ impl Transition {
                     return Jet::constant(T::zero());
                 }
                 let w = (-(z * two) + one) / (z * (-z + one));
-                let q = (-w).exp();
-                q / (q + one)
+                // S = 1/(1 + e^w) = logistic(-w) <= 1/2 here.
+                (-w).logistic()
             }
             Transition::Cubic => z * z * (z * (-two) + T::c(3.0)),
             Transition::Quintic => z * z * z * (z * (z * T::c(6.0) - T::c(15.0)) + T::c(10.0)),
