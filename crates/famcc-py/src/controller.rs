@@ -518,16 +518,7 @@ impl PyController {
             "authors" => Latch::Authors,
             _ => Latch::Paper,
         };
-        let transition = match choice(
-            transition,
-            "transition",
-            &["exponential", "cubic", "quintic", "sine"],
-        )? {
-            "cubic" => Transition::Cubic,
-            "quintic" => Transition::Quintic,
-            "sine" => Transition::Sine,
-            _ => Transition::Exponential,
-        };
+        let transition = crate::laws::parse_transition(transition, "transition")?;
         let f32_ = choice(dtype, "dtype", &["float64", "float32"])? == "float32";
         let differentiator = match differentiator {
             None => None,

@@ -2,22 +2,10 @@
 //! laws, the iterative manifold, the corollaries' settling-time bounds.
 
 use crate::errors::{config_err, ConfigError};
-use crate::laws::{map_float_or_array, Law, SkewSpec};
-use famcc_core::{bounds, envelope, manifold, transition, Feedback, SkewedLaw, Transition};
+use crate::laws::{map_float_or_array, parse_transition, Law, SkewSpec};
+use famcc_core::{bounds, envelope, manifold, transition, Feedback, SkewedLaw};
 use numpy::PyArray1;
 use pyo3::prelude::*;
-
-fn kind(name: &str) -> PyResult<Transition> {
-    match name {
-        "exponential" => Ok(Transition::Exponential),
-        "cubic" => Ok(Transition::Cubic),
-        "quintic" => Ok(Transition::Quintic),
-        "sine" => Ok(Transition::Sine),
-        other => Err(ConfigError::new_err(format!(
-            "kind must be one of 'exponential', 'cubic', 'quintic', 'sine' (got {other:?})"
-        ))),
-    }
-}
 
 /// Single-ended transition T(z) (eq. trnsT) on a float or an array.
 #[pyfunction]
@@ -29,7 +17,7 @@ pub fn transition_t<'py>(py: Python<'py>, z: &Bound<'py, PyAny>) -> PyResult<Bou
 #[pyfunction]
 #[pyo3(signature = (z, kind = "exponential"))]
 pub fn transition_s<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, kind: &str) -> PyResult<Bound<'py, PyAny>> {
-    let k = self::kind(kind)?;
+    let k = parse_transition(kind, "kind")?;
     map_float_or_array(py, z, |v| k.double(v))
 }
 
@@ -37,7 +25,7 @@ pub fn transition_s<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, kind: &str) -> 
 #[pyfunction]
 #[pyo3(signature = (z, kind = "exponential"))]
 pub fn transition_u<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, kind: &str) -> PyResult<Bound<'py, PyAny>> {
-    let k = self::kind(kind)?;
+    let k = parse_transition(kind, "kind")?;
     map_float_or_array(py, z, |v| k.interval(v))
 }
 

@@ -168,14 +168,15 @@ impl Law {
     }
 }
 
-fn parse_transition(name: &str) -> PyResult<Transition> {
+/// Parses a transition name; errors name the argument `arg`.
+pub fn parse_transition(name: &str, arg: &str) -> PyResult<Transition> {
     match name {
         "exponential" => Ok(Transition::Exponential),
         "cubic" => Ok(Transition::Cubic),
         "quintic" => Ok(Transition::Quintic),
         "sine" => Ok(Transition::Sine),
         other => Err(crate::errors::ConfigError::new_err(format!(
-            "transition must be one of 'exponential', 'cubic', 'quintic', 'sine' (got {other:?})"
+            "{arg} must be one of 'exponential', 'cubic', 'quintic', 'sine' (got {other:?})"
         ))),
     }
 }
@@ -219,72 +220,37 @@ fn check_skew<T: Real>(s: Skew<T>) -> PyResult<()> {
         .map_err(config_err)
 }
 
-#[pymethods]
-impl Smooth {
-    #[new]
-    #[pyo3(signature = (eps_s, eps_z, transition = "exponential"))]
-    fn new(eps_s: f64, eps_z: f64, transition: &str) -> PyResult<Self> {
-        let s = Self {
-            eps_s,
-            eps_z,
-            transition: parse_transition(transition)?,
-        };
-        check_skew(s.skew::<f64>())?;
-        Ok(s)
-    }
-    #[getter(transition)]
-    fn get_transition(&self) -> &'static str {
-        transition_name(self.transition)
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "Smooth(eps_s={:?}, eps_z={:?}, transition='{}')",
-            self.eps_s,
-            self.eps_z,
-            transition_name(self.transition)
-        )
-    }
-    fn __getnewargs__(&self) -> (f64, f64, &'static str) {
-        (self.eps_s, self.eps_z, transition_name(self.transition))
-    }
+/// The Python methods shared by the skew classes: construction with
+/// validation, the transition's name, `repr` and pickling.
+macro_rules! skew_methods {
+    ($name:ident, ($($field:ident),*)) => {
+        #[pymethods]
+        impl $name {
+            #[new]
+            #[pyo3(signature = ($($field,)* transition = "exponential"))]
+            fn new($($field: f64,)* transition: &str) -> PyResult<Self> {
+                let s = Self { $($field,)* transition: parse_transition(transition, "transition")? };
+                check_skew(s.skew::<f64>())?;
+                Ok(s)
+            }
+            #[getter(transition)]
+            fn get_transition(&self) -> &'static str {
+                transition_name(self.transition)
+            }
+            fn __repr__(&self) -> String {
+                let parts: Vec<String> = vec![$(format!("{}={:?}", stringify!($field), self.$field)),*];
+                format!("{}({}, transition='{}')", stringify!($name), parts.join(", "), transition_name(self.transition))
+            }
+            fn __getnewargs__(&self) -> ($(skew_methods!(@f64 $field),)* &'static str) {
+                ($(self.$field,)* transition_name(self.transition))
+            }
+        }
+    };
+    (@f64 $field:ident) => { f64 };
 }
 
-#[pymethods]
-impl Nonsingular {
-    #[new]
-    #[pyo3(signature = (eps_s, eps_z, k_pp, transition = "exponential"))]
-    fn new(eps_s: f64, eps_z: f64, k_pp: f64, transition: &str) -> PyResult<Self> {
-        let s = Self {
-            eps_s,
-            eps_z,
-            k_pp,
-            transition: parse_transition(transition)?,
-        };
-        check_skew(s.skew::<f64>())?;
-        Ok(s)
-    }
-    #[getter(transition)]
-    fn get_transition(&self) -> &'static str {
-        transition_name(self.transition)
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "Nonsingular(eps_s={:?}, eps_z={:?}, k_pp={:?}, transition='{}')",
-            self.eps_s,
-            self.eps_z,
-            self.k_pp,
-            transition_name(self.transition)
-        )
-    }
-    fn __getnewargs__(&self) -> (f64, f64, f64, &'static str) {
-        (
-            self.eps_s,
-            self.eps_z,
-            self.k_pp,
-            transition_name(self.transition),
-        )
-    }
-}
+skew_methods!(Smooth, (eps_s, eps_z));
+skew_methods!(Nonsingular, (eps_s, eps_z, k_pp));
 
 impl Smooth {
     pub fn skew<T: Real>(&self) -> Skew<T> {
