@@ -278,7 +278,13 @@ def test_step_state_output_is_finite(design, z):
 def test_scenario_within_theoretical_bounds(name, variant):
     sc = famcc.scenarios.paper(name, variant)
     res = sc.run()
-    assert sc.check(res) == []
+    if sc.regains_accuracy:
+        assert sc.check(res) == []
+    else:
+        # The paper's own numbers do not regain the accuracy (docs/errata.md): the
+        # claim fails, marked known, and nothing else fails.
+        (failure,) = sc.check(res)
+        assert failure.startswith("settles: failed (known")
     # What check() promises, spelled out for the unsaturated runs.
     assert res.max_abs_xi < 1.0 and res.clamp_count == 0
     if not sc.saturated:

@@ -35,12 +35,11 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+# The differentiator's start-up (peaking) window: the u and z panels zoom past it.
+from famcc.verdicts import STARTUP
+
 __all__ = ["constrained_offset", "save", "scenario_figure", "sweep_figure"]
 
-#: Seconds at the start treated as the differentiator's start-up (peaking)
-#: window when choosing the zoom of the u and z panels (the order-3
-#: differentiator with mu = 0.01 s rings for about 0.1 s).
-STARTUP = 0.15
 
 _NOMINAL = {"color": "black", "linestyle": (0, (5, 3)), "linewidth": 1.1}
 _FLEXIBLE = {"color": "tab:red", "linestyle": "-", "linewidth": 2.0, "alpha": 0.85}

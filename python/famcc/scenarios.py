@@ -29,15 +29,27 @@ True
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
 import famcc
-from famcc import bounds, plants
+from famcc import bounds, plants, verdicts
 
-__all__ = ["VARIANTS", "Scenario", "names", "paper"]
+__all__ = ["MAX_EXTENSIONS", "MAX_HORIZON", "MAX_RK4_STEP", "VARIANTS", "Scenario", "names",
+           "paper", "substeps_for"]
 
-VARIANTS = ("paper", "code")
+VARIANTS = plants.VARIANTS
+
+#: Largest RK4 step of the plant integration, s (10 substeps per sample at 1 kHz).
+MAX_RK4_STEP = 1e-4
+
+#: A saturated run is extended to this many seconds past its recovery bound.
+EXTENSION_MARGIN = 2.0
+#: At most this many extensions of a saturated run.
+MAX_EXTENSIONS = 3
+#: Never simulate a scenario longer than this (s).
+MAX_HORIZON = 40.0
 
 _NAMES = (
     "finite-time",
@@ -114,52 +126,95 @@ class Scenario:
         order = kw.pop("order")
         return famcc.Controller(order, dt, **kw)
 
-    def run(self, dt: float = 1e-3, t_end: float | None = None, substeps: int = 10,
+    def run(self, dt: float = 1e-3, t_end: float | None = None, substeps: int | None = None,
             **overrides: Any):
         """Simulates the scenario; returns a :class:`famcc.SimResult`.
 
-        ``overrides`` go to the controller (e.g. ``differentiator=...``).
+        ``overrides`` go to the controller (e.g. ``differentiator=...``);
+        ``substeps`` RK4 steps per sample (default :func:`substeps_for`, so that the
+        plant is integrated equally finely at every sample rate).
+
+        Without ``t_end``, a saturated scenario runs long enough for its
+        recovery claim to fall due: when the last saturation episode's bound
+        ``max(T_e, T_s) + T'`` lies beyond the paper's 10 s horizon, the run is
+        repeated up to :data:`EXTENSION_MARGIN` s past that bound (at most
+        :data:`MAX_EXTENSIONS` times, never beyond :data:`MAX_HORIZON`). Where
+        saturation keeps returning sooner than ``T'``, the claim stays untested
+        and :meth:`verdicts` says so.
         """
         from famcc.simulate import simulate
 
-        return simulate(self.plant, self.controller(dt, **overrides),
-                        self.t_end if t_end is None else t_end,
-                        u_limits=self.u_limits, substeps=substeps)
+        horizon = self.t_end if t_end is None else t_end
+        substeps = substeps_for(dt) if substeps is None else substeps
+
+        def once(h: float) -> Any:
+            return simulate(self.plant, self.controller(dt, **overrides), h,
+                            u_limits=self.u_limits, substeps=substeps)
+
+        res = once(horizon)
+        if t_end is not None or not self.saturated:
+            return res
+        for _ in range(MAX_EXTENSIONS):
+            bound = self.recovery_bound(res)
+            if res.saturated[-1]:
+                bound = float(res.t[-1]) + self.t_prime
+            longer = min(bound + EXTENSION_MARGIN, MAX_HORIZON)
+            if bound <= float(res.t[-1]) or longer <= horizon + dt:
+                break
+            horizon = longer
+            res = once(horizon)
+        return res
 
     def recovery_bound(self, result) -> float:
         """max(T_e, T_s) + T' (s), with T_e the end of the last saturation episode."""
         t_e = result.last_saturation_end or 0.0
         return max(t_e, self.settle_time) + self.t_prime
 
-    def check(self, result) -> list[str]:
-        """The theoretical guarantees this run violates (empty when all hold).
+    def verdicts(self, result) -> list[verdicts.Verdict]:
+        """The paper's claims for this scenario, each held, failed or untested.
 
-        - |xi~| < 1 at every sample (Theorems 1-3) and no clamping;
-        - u inside the actuator limits;
-        - without saturation (all samples inside the limits): |z1| < eps_z from
-          T_s + T' on (Corollaries 1-3);
-        - with saturation: |z1| < eps_z regained by max(T_e, T_s) + T', unless the
-          scenario is documented not to regain it (then only the invariants).
+        A scenario designed without saturation (limits +-100) is checked for
+        the claims of Theorems 1-3 without saturation (see
+        :mod:`famcc.verdicts`): ``settling`` within ``max(T_e, T_s) + T'`` (T_e
+        is 0 unless the start-up peaking saturated), ``unsaturated`` and
+        ``nominal`` after the start-up window. A saturated scenario is checked
+        for ``settles``, ``recovery`` and ``nominal-again`` after every
+        saturation episode. Where the paper's own numbers are documented not to
+        regain the accuracy (``regains_accuracy`` false), the ``settles``
+        failure is marked known; it still counts as failed.
         """
-        problems = []
-        mx = result.max_abs_xi
-        if mx is None or not mx < 1.0:
-            problems.append(f"max |xi~| = {mx} is not < 1")
-        if result.clamp_count:
-            problems.append(f"xi~ was clamped {result.clamp_count} times")
-        lo, hi = self.u_limits
-        if result.u_min < lo or result.u_max > hi:
-            problems.append(f"u left the limits [{lo}, {hi}]")
-        ts = result.settling_time(self.eps_z)
-        horizon = float(result.t[-1])
-        if result.saturated_fraction == 0.0:
-            if self.bound <= horizon and (ts is None or ts > self.bound):
-                problems.append(f"settling time {ts} s exceeds the bound {self.bound:.3g} s")
-        elif self.regains_accuracy:
-            rb = self.recovery_bound(result)
-            if rb <= horizon and (ts is None or ts > rb):
-                problems.append(f"accuracy regained at {ts} s, after max(T_e, T_s) + T' = {rb:.3g} s")
-        return problems
+        eps, ts_, tp = self.eps_z, self.settle_time, self.t_prime
+        if not self.saturated:
+            return [verdicts.settling(result, eps, ts_, tp),
+                    verdicts.unsaturated(result, verdicts.STARTUP),
+                    verdicts.nominal(result, verdicts.STARTUP)]
+        return [verdicts.settles(result, eps, self.t_end, known_failure=not self.regains_accuracy),
+                verdicts.recovery(result, eps, ts_, tp),
+                verdicts.nominal_again(result, ts_, tp)]
+
+    @property
+    def claims(self) -> tuple[str, ...]:
+        """The names of the claims :meth:`verdicts` judges for this scenario."""
+        if not self.saturated:
+            return ("settling", "unsaturated", "nominal")
+        return ("settles", "recovery", "nominal-again")
+
+    def check(self, result) -> list[str]:
+        """The claims this run fails, one line each (empty when none fails).
+
+        Untested claims are not failures, and not successes either: see
+        :meth:`verdicts` for all of them.
+        """
+        return [v.text() for v in self.verdicts(result) if v.failed]
+
+
+def substeps_for(dt: float) -> int:
+    """RK4 substeps per sample so that the plant's step stays <= :data:`MAX_RK4_STEP`.
+
+    >>> substeps_for(1e-3), substeps_for(1 / 50), substeps_for(1e-4)
+    (10, 200, 1)
+    """
+    return max(1, math.ceil(dt / MAX_RK4_STEP - 1e-9))
 
 
 def names() -> list[str]:

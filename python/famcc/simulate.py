@@ -137,6 +137,13 @@ class SimResult:
         Controller diagnostics read after each step (None when not recorded).
         ``bounds`` and ``nominal_bounds`` have shape (K, 2): flexible / nominal upper
         bounds in the x and y directions.
+    xi_nominal : ndarray or None
+        The nominal constraint variable ``xi`` (before the flexible expansion). Unlike
+        ``xi`` (= ``xi~``, which stays below 1 by construction once the bounds expand),
+        it shows how far the state really left the nominal constraint set.
+    expansion : ndarray or None
+        The flexible boundary's expansion factor (flexible / nominal bound, 1.0 while
+        the bounds are nominal).
     clamp_count : int
         The controller's final clamp count.
     neg_f_over_g : ndarray or None
@@ -171,6 +178,8 @@ class SimResult:
     expanded: np.ndarray | None = None
     clamp_count: int = 0
     neg_f_over_g: np.ndarray | None = None
+    xi_nominal: np.ndarray | None = None
+    expansion: np.ndarray | None = None
 
     # -- accuracy ------------------------------------------------------------
     @property
@@ -184,6 +193,14 @@ class SimResult:
                 and math.isfinite(eps)):
             raise ValueError(f"eps must be a finite number > 0, got {eps!r}")
         return float(eps)
+
+    def steady_rms(self, eps: float) -> float | None:
+        """RMS of ``z1`` from the settling time to ``eps`` on (None if never settled)."""
+        ts = self.settling_time(eps)
+        if ts is None:
+            return None
+        tail = self.z1[np.asarray(self.t) >= ts]
+        return float(np.sqrt(np.mean(np.square(tail)))) if tail.size else None
 
     def settling_time(self, eps: float) -> float | None:
         """First time after which ``|z1| < eps`` holds to the end of the horizon.
@@ -215,6 +232,36 @@ class SimResult:
         return float(np.max(np.abs(self.xi)))
 
     @property
+    def max_abs_xi_nominal(self) -> float | None:
+        """``max |xi|`` of the nominal constraint variable (None when not recorded).
+
+        Above 1 the state left the nominal constraint set; only the flexible
+        boundary then kept ``|xi~| < 1``.
+        """
+        if self.xi_nominal is None or len(self.xi_nominal) == 0:
+            return None
+        return float(np.max(np.abs(self.xi_nominal)))
+
+    @property
+    def expanded_fraction(self) -> float | None:
+        """Fraction of samples with the flexible bounds expanded (None when not recorded)."""
+        if self.expanded is None or len(self.expanded) == 0:
+            return None
+        return float(np.mean(np.asarray(self.expanded, dtype=bool)))
+
+    @property
+    def expanded_unsaturated_fraction(self) -> float | None:
+        """Fraction of samples expanded while ``v`` lay inside the limits.
+
+        There the preset accuracy was given up although the actuator had
+        headroom: a sign of ``k_u`` too small for the plant, or of a sample rate too
+        low for the design. None when not recorded.
+        """
+        if self.expanded is None or len(self.expanded) == 0:
+            return None
+        return float(np.mean(np.asarray(self.expanded, dtype=bool) & ~self.saturated))
+
+    @property
     def u_min(self) -> float:
         """Smallest applied input."""
         return float(np.min(self.u))
@@ -224,7 +271,9 @@ class SimResult:
         """Largest applied input."""
         return float(np.max(self.u))
 
-    def _saturated(self) -> np.ndarray:
+    @property
+    def saturated(self) -> np.ndarray:
+        """Per sample: True where the commanded ``v`` lay outside ``u_limits``."""
         v = np.asarray(self.v)
         if self.u_limits is None:
             return np.zeros(v.shape, dtype=bool)
@@ -234,7 +283,7 @@ class SimResult:
     @property
     def saturated_fraction(self) -> float:
         """Fraction of samples whose ``v`` lay outside ``u_limits`` (0 without limits)."""
-        sat = self._saturated()
+        sat = self.saturated
         return float(np.mean(sat)) if sat.size else 0.0
 
     def saturation_episodes(self) -> list[tuple[float, float]]:
@@ -244,7 +293,7 @@ class SimResult:
         ``end`` is the time of the first unsaturated sample after the run (clipped
         to the last sample time when the run reaches the end of the horizon).
         """
-        sat = self._saturated().astype(np.int8)
+        sat = self.saturated.astype(np.int8)
         if not sat.any():
             return []
         edges = np.diff(np.concatenate(([0], sat, [0])))
@@ -271,6 +320,8 @@ class SimResult:
         1.0 when never expanded; directions with a zero nominal bound (unused by the
         constraint) are ignored. None when diagnostics were not recorded.
         """
+        if self.expansion is not None and len(self.expansion):
+            return float(max(1.0, np.nanmax(np.asarray(self.expansion, dtype=float))))
         if self.bounds is None or self.nominal_bounds is None or self.expanded is None:
             return None
         if not np.any(self.expanded):
@@ -310,6 +361,10 @@ class SimResult:
             "first_entry": self.first_entry(eps),
             "max_abs_z1_final_second": _tail_max(self.t, np.abs(self.z1), 1.0),
             "max_abs_xi": self.max_abs_xi,
+            "max_abs_xi_nominal": self.max_abs_xi_nominal,
+            "expanded_fraction": self.expanded_fraction,
+            "expanded_unsaturated_fraction": self.expanded_unsaturated_fraction,
+            "steady_rms": self.steady_rms(eps),
             "u_min": self.u_min,
             "u_max": self.u_max,
             "saturated_fraction": self.saturated_fraction,
@@ -486,7 +541,8 @@ def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
     negfg = np.full(K, np.nan) if has_fg else None
     if record:
         zh_arr = np.full((K, n), np.nan)
-        xi_arr, s_arr, sp_arr, dsp_arr = (np.full(K, np.nan) for _ in range(4))
+        xi_arr, s_arr, sp_arr, dsp_arr, xin_arr, fac_arr = (np.full(K, np.nan)
+                                                            for _ in range(6))
         b_arr = np.full((K, 2), np.nan)
         nb_arr = np.full((K, 2), np.nan)
         ex_arr = np.zeros(K, dtype=bool)
@@ -521,6 +577,8 @@ def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
             if record:
                 d = controller.diagnostics
                 xi_arr[k] = d.xi
+                xin_arr[k] = getattr(d, "xi_nominal", math.nan)
+                fac_arr[k] = getattr(d, "expansion", math.nan)
                 s_arr[k] = d.s
                 sp_arr[k] = d.s_prev
                 dsp_arr[k] = d.ds_prev
@@ -561,6 +619,9 @@ def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
         result.z_hat, result.xi, result.s = zh_arr, xi_arr, s_arr
         result.s_prev, result.ds_prev = sp_arr, dsp_arr
         result.bounds, result.nominal_bounds, result.expanded = b_arr, nb_arr, ex_arr
+        # Controllers without these diagnostics (duck-typed ones) leave them unknown.
+        result.xi_nominal = None if np.all(np.isnan(xin_arr)) else xin_arr
+        result.expansion = None if np.all(np.isnan(fac_arr)) else fac_arr
     return result
 
 

@@ -64,6 +64,9 @@ pub struct Diagnostics<T, const N: usize> {
     pub z_hat: [T; N],
     /// True when the flexible boundary was expanded.
     pub expanded: bool,
+    /// The expansion factor `x~_U / x_U = y~_U / y_U >= 1` of the flexible
+    /// boundary (eq. WxyUxyL); exactly 1 while the bounds are nominal.
+    pub expansion: T,
     /// `v_{k-1} - applied` when the caller passed the applied input.
     pub saturation_gap: Option<T>,
     /// Number of steps at which `|xi|` had to be clamped below 1.
@@ -87,6 +90,7 @@ impl<T: Real, const N: usize> Default for Diagnostics<T, N> {
             nominal_bounds: (z, z),
             z_hat: [z; N],
             expanded: false,
+            expansion: T::one(),
             saturation_gap: None,
             clamp_count: 0,
             v: z,
@@ -492,6 +496,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
             nominal_bounds: (x_u, y_u),
             z_hat: *z,
             expanded: factor > T::one(),
+            expansion: factor,
             saturation_gap: None,
             clamp_count: clamps,
             v,

@@ -427,7 +427,24 @@ fn check_moderate<const N: usize>(s: &Spec, es: &[f64]) -> Result<(), TestCaseEr
     for &e in es {
         let v = c.step(e);
         prop_assert!(v.is_ok(), "step({}) = {:?} for {:?}", e, v, s);
-        prop_assert!(c.diagnostics().xi.abs() < 1.0);
+        let d = c.diagnostics();
+        prop_assert!(d.xi.abs() < 1.0);
+        // The expansion factor: >= 1, > 1 exactly when expanded, and it maps the
+        // nominal xi to the flexible one (unless xi had to be clamped).
+        prop_assert!(d.expansion >= 1.0 && d.expansion.is_finite());
+        prop_assert_eq!(d.expanded, d.expansion > 1.0);
+        if d.clamp_count == 0 && s.rho_frac.is_some() {
+            let expect = d.xi_nominal / d.expansion;
+            prop_assert!(
+                (d.xi - expect).abs() <= 1e-15 * expect.abs().max(1.0),
+                "xi {} vs xi_nominal / expansion {}",
+                d.xi,
+                expect
+            );
+        }
+        if s.rho_frac.is_none() {
+            prop_assert_eq!(d.expansion, 1.0);
+        }
     }
     Ok(())
 }

@@ -909,6 +909,10 @@ typedef struct FamccDiagnostics_f32 {
    */
   float xi_nominal;
   /**
+   * The flexible boundary's expansion factor (1 while the bounds are nominal).
+   */
+  float expansion;
+  /**
    * The manifold value `s = s_n`.
    */
   float s;
@@ -991,6 +995,10 @@ typedef struct FamccDiagnostics_f64 {
    * The nominal constraint variable, before clamping.
    */
   double xi_nominal;
+  /**
+   * The flexible boundary's expansion factor (1 while the bounds are nominal).
+   */
+  double expansion;
   /**
    * The manifold value `s = s_n`.
    */

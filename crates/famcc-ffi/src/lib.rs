@@ -341,6 +341,8 @@ pub struct FamccDiagnostics<T> {
     pub xi: T,
     /// The nominal constraint variable, before clamping.
     pub xi_nominal: T,
+    /// The flexible boundary's expansion factor (1 while the bounds are nominal).
+    pub expansion: T,
     /// The manifold value `s = s_n`.
     pub s: T,
     /// `s_1..s_n`.
@@ -781,6 +783,7 @@ fn diag_to_c<T: Real, const N: usize>(d: &Diagnostics<T, N>) -> FamccDiagnostics
         t: d.t,
         xi: d.xi,
         xi_nominal: d.xi_nominal,
+        expansion: d.expansion,
         s: d.s,
         stages: pad(&d.stages),
         s_prev: d.s_prev,

@@ -188,6 +188,9 @@ pub struct Diagnostics {
     /// True when the flexible bounds were expanded.
     #[pyo3(get)]
     expanded: bool,
+    /// Expansion factor of the flexible bounds (flexible / nominal, 1.0 when nominal).
+    #[pyo3(get)]
+    expansion: f64,
     /// v_{k-1} - applied, when `applied` was passed.
     #[pyo3(get)]
     saturation_gap: Option<f64>,
@@ -214,6 +217,7 @@ impl Diagnostics {
             nominal_bounds: (f(d.nominal_bounds.0), f(d.nominal_bounds.1)),
             z_hat: d.z_hat.iter().map(|x| f(*x)).collect(),
             expanded: d.expanded,
+            expansion: f(d.expansion),
             saturation_gap: d.saturation_gap.map(f),
             clamp_count: d.clamp_count,
             v: f(d.v),

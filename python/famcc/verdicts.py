@@ -1,0 +1,317 @@
+"""Verdicts on a closed-loop run: claims of the paper's theorems that a run can fail.
+
+Every function here looks at a :class:`famcc.SimResult` and returns a
+:class:`Verdict` whose status is ``"held"``, ``"failed"`` or ``"untested"``.
+A claim is *untested* when the run cannot decide it, for instance when its
+bound lies beyond the horizon; it is never reported as held then
+(docs/design.md §6).
+
+``|xi~| < 1`` is deliberately not a verdict: once the flexible boundary has
+expanded it holds by construction (``xi~ = d / (d + rho_e)``). What can fail
+is the *nominal* constraint: the bounds staying nominal while the actuator had
+headroom, and the accuracy being regained after saturation.
+
+The claims (Theorems 1-3 and Corollaries 1-3 of the paper), with ``T_s`` the
+envelope's preset time, ``T'`` the corollary's convergence time, ``eps`` the
+output accuracy and ``T_e`` the end of a saturation episode:
+
+``settling`` (a run designed without saturation)
+    ``|z1| < eps`` for good from ``max(T_e, T_s) + T'`` on, where ``T_e`` is
+    the end of the last saturation episode (0 when the actuator never
+    saturated; the start-up peaking of the differentiator may saturate it
+    for a few milliseconds).
+``unsaturated``
+    the commanded ``v`` stays inside the limits after the start-up window.
+``nominal``
+    the bounds stay nominal (no flexible expansion) after the start-up
+    window: the state stays inside the nominal constraint set, which is what
+    Theorems 1-3 promise without saturation.
+``settles`` (a run with saturation)
+    settled by the paper's horizon (10 s): ``|z1| < eps`` from some time on
+    until then, as the paper's saturated figures show. A run still saturated
+    or outside the band at that time fails.
+``recovery``
+    after every saturation episode whose recovery bound
+    ``max(T_e, T_s) + T'`` comes before the next episode (or the end of the
+    run), ``|z1| < eps`` holds from that bound until the next episode.
+``nominal-again``
+    in the same windows, the bounds are nominal again.
+
+>>> import numpy as np, famcc
+>>> from famcc import verdicts
+>>> t = np.arange(0, 5.001, 0.01)
+>>> z1 = np.where(t < 2.0, 1.0, 0.01)          # settles at 2 s
+>>> r = famcc.SimResult(t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None],
+...                     v=0 * t, u=0 * t, dt=0.01)
+>>> verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=2.0).status
+'held'
+>>> verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=0.5).status
+'failed'
+>>> verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=9.0).status
+'untested'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "STARTUP",
+    "STATUSES",
+    "Verdict",
+    "count",
+    "nominal",
+    "nominal_again",
+    "recovery",
+    "recovery_windows",
+    "settles",
+    "settling",
+    "unsaturated",
+]
+
+#: Seconds at the start treated as the differentiator's start-up transient:
+#: the high-gain differentiator starts from ``(e0, 0, ...)`` and peaks for a
+#: few time constants (``mu = 0.01`` s; about 0.1 s at order 3). Saturation
+#: and expansion before it are not held against the nominal claims.
+STARTUP = 0.15
+
+#: The three statuses, in the order reports list them.
+STATUSES = ("held", "failed", "untested")
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """One claim about one run, and whether the run kept it.
+
+    Attributes
+    ----------
+    name : str
+        Short identifier (``"settling"``, ``"recovery"``, ...).
+    claim : str
+        The claim in plain words, with its numbers.
+    status : str
+        ``"held"``, ``"failed"`` or ``"untested"``.
+    detail : str
+        What the run showed (numbers), or why the claim could not be tested.
+    known : bool
+        A documented failure (see docs/errata.md); it still counts as failed.
+    """
+
+    name: str
+    claim: str
+    status: str
+    detail: str
+    known: bool = False
+
+    def __post_init__(self) -> None:
+        if self.status not in STATUSES:
+            raise ValueError(f"status must be one of {STATUSES}, got {self.status!r}")
+
+    @property
+    def failed(self) -> bool:
+        """True when the run broke the claim."""
+        return self.status == "failed"
+
+    def text(self) -> str:
+        """``"name: status (detail)"``, one line."""
+        tail = " (known, docs/errata.md)" if self.known and self.failed else ""
+        return f"{self.name}: {self.status}{tail}: {self.detail}"
+
+
+def count(verdicts: Sequence[Verdict]) -> dict[str, int]:
+    """Number of verdicts per status, plus ``"tested"`` (held + failed) and ``"total"``."""
+    out = {s: sum(v.status == s for v in verdicts) for s in STATUSES}
+    out["tested"] = out["held"] + out["failed"]
+    out["total"] = len(verdicts)
+    return out
+
+
+# ---------------------------------------------------------------------------
+# helpers
+# ---------------------------------------------------------------------------
+
+def _t(x: float | None) -> str:
+    return "never" if x is None else f"{x:.3f} s"
+
+
+def _expanded(result: Any) -> np.ndarray | None:
+    return None if result.expanded is None else np.asarray(result.expanded, dtype=bool)
+
+
+def _last_bound(result: Any, settle_time: float, t_prime: float) -> tuple[float, float]:
+    """``(T_e, max(T_e, T_s) + T')`` for the last saturation episode (T_e = 0 if none)."""
+    t_e = result.last_saturation_end or 0.0
+    return t_e, max(t_e, settle_time) + t_prime
+
+
+def recovery_windows(result: Any, settle_time: float, t_prime: float
+                     ) -> list[tuple[float, float, float]]:
+    """``(T_e, due, until)`` for every saturation episode.
+
+    ``due = max(T_e, T_s) + T'`` is the episode's recovery bound and ``until``
+    the start of the next episode (or the end of the run, inclusive). A
+    window is *due* in this run when ``due <= until`` (and, for the last one,
+    ``due`` lies inside the horizon); otherwise saturation came back, or the
+    run ended, before the claim fell due.
+    """
+    episodes = result.saturation_episodes()
+    horizon = float(result.t[-1])
+    out = []
+    for i, (_, t_e) in enumerate(episodes):
+        until = episodes[i + 1][0] if i + 1 < len(episodes) else horizon
+        saturated_at_end = i + 1 == len(episodes) and bool(result.saturated[-1])
+        due = max(t_e, settle_time) + t_prime
+        if saturated_at_end:
+            due = horizon + t_prime          # the episode never ended in this run
+        out.append((t_e, due, until))
+    return out
+
+
+def _is_due(window: tuple[float, float, float], horizon: float) -> bool:
+    _, due, until = window
+    return due <= until and due <= horizon
+
+
+# ---------------------------------------------------------------------------
+# claims of a run designed without saturation
+# ---------------------------------------------------------------------------
+
+def settling(result: Any, eps: float, settle_time: float, t_prime: float) -> Verdict:
+    """``|z1| < eps`` for good from ``max(T_e, T_s) + T'`` on (Corollaries 1-3)."""
+    t_e, bound = _last_bound(result, settle_time, t_prime)
+    horizon = float(result.t[-1])
+    ts = result.settling_time(eps)
+    where = f"max(T_e, T_s) + T' = max({t_e:.3g}, {settle_time:g}) + {t_prime:.3g}"
+    claim = f"|z1| < {eps:g} for good from {where} = {bound:.3g} s on"
+    if bound > horizon:
+        return Verdict("settling", claim, "untested",
+                       f"the bound {bound:.3g} s lies beyond the horizon {horizon:g} s "
+                       f"(settled at {_t(ts)})")
+    if ts is not None and ts <= bound:
+        return Verdict("settling", claim, "held", f"settled at {ts:.3f} s")
+    return Verdict("settling", claim, "failed",
+                   "never settled" if ts is None else f"settled only at {ts:.3f} s")
+
+
+def unsaturated(result: Any, startup: float = STARTUP) -> Verdict:
+    """The commanded ``v`` stays inside the limits after the start-up window."""
+    claim = f"v inside the limits after the start-up ({startup:g} s)"
+    if result.u_limits is None:
+        return Verdict("unsaturated", claim, "untested", "the run had no limits")
+    late = np.asarray(result.t) >= startup
+    sat = np.asarray(result.saturated)[late]
+    if not sat.any():
+        return Verdict("unsaturated", claim, "held", "never outside after the start-up")
+    first = float(np.asarray(result.t)[late][int(np.argmax(sat))])
+    return Verdict("unsaturated", claim, "failed",
+                   f"outside the limits at {100 * float(np.mean(sat)):.1f} % of the samples "
+                   f"after the start-up, first at {first:.3f} s")
+
+
+def nominal(result: Any, startup: float = STARTUP) -> Verdict:
+    """The bounds stay nominal (no flexible expansion) after the start-up window."""
+    claim = f"bounds nominal (state inside the nominal constraint) after {startup:g} s"
+    exp = _expanded(result)
+    if exp is None:
+        return Verdict("nominal", claim, "untested", "diagnostics were not recorded")
+    late = np.asarray(result.t) >= startup
+    bad = exp[late]
+    if not bad.any():
+        xi_nom = result.xi_nominal
+        tail = ("" if xi_nom is None
+                else f" (max nominal |xi| {float(np.max(np.abs(xi_nom[late]))):.3f})")
+        return Verdict("nominal", claim, "held", "never expanded after the start-up" + tail)
+    first = float(np.asarray(result.t)[late][int(np.argmax(bad))])
+    return Verdict("nominal", claim, "failed",
+                   f"expanded at {100 * float(np.mean(bad)):.1f} % of the samples after the "
+                   f"start-up, first at {first:.3f} s, up to {result.largest_expansion:.3g}x")
+
+
+# ---------------------------------------------------------------------------
+# claims of a run with saturation
+# ---------------------------------------------------------------------------
+
+def settles(result: Any, eps: float, within: float, known_failure: bool = False) -> Verdict:
+    """The run is settled by ``within`` seconds (the paper's horizon).
+
+    ``|z1| < eps`` from some time on until ``within`` (or the end of the run,
+    when it is shorter): what the paper's saturated figures show within their
+    10 s. A run that is still saturated, or still outside the band, at that
+    time fails. Recurring saturation may take the error out of the band again
+    later; :func:`recovery` judges what follows each episode.
+    """
+    horizon = min(float(result.t[-1]), within)
+    claim = f"settled by {horizon:g} s: |z1| < {eps:g} from some time on until {horizon:g} s"
+    t = np.asarray(result.t)
+    upto = t <= horizon + 1e-9 * max(1.0, horizon)
+    z1 = np.abs(np.asarray(result.z1, dtype=float))[upto]
+    outside = np.flatnonzero(~(z1 < eps))
+    if outside.size == 0:
+        return Verdict("settles", claim, "held", "inside the band from the first sample")
+    last = int(outside[-1])
+    if last + 1 < z1.size:
+        return Verdict("settles", claim, "held", f"settled at {float(t[last + 1]):.3f} s")
+    sat = 100 * float(np.mean(np.asarray(result.saturated)[upto]))
+    return Verdict("settles", claim, "failed",
+                   f"|z1| = {float(z1[-1]):.3g} at {horizon:g} s (saturated {sat:.0f} % of the "
+                   "time until then)", known=known_failure)
+
+
+def _windows_verdict(name: str, claim: str, result: Any, settle_time: float, t_prime: float,
+                     bad_in_window: Any) -> Verdict:
+    horizon = float(result.t[-1])
+    windows = recovery_windows(result, settle_time, t_prime)
+    if not windows:
+        return Verdict(name, claim, "untested", "the actuator never saturated")
+    due = [w for w in windows if _is_due(w, horizon)]
+    if not due:
+        gaps = [w[2] - w[0] for w in windows]
+        return Verdict(name, claim, "untested",
+                       f"no claim fell due: after each of the {len(windows)} episodes "
+                       f"saturation returned (or the run ended) within {max(gaps):.3g} s, "
+                       f"sooner than T' = {t_prime:.3g} s")
+    t = np.asarray(result.t)
+    failures = []
+    for t_e, d, until in due:
+        mask = (t >= d) & ((t < until) | (until >= horizon))
+        why = bad_in_window(mask)
+        if why:
+            failures.append(f"after the episode ending at {t_e:.3f} s: {why} in "
+                            f"[{d:.3f}, {until:.3f}] s")
+    n = len(due)
+    if failures:
+        return Verdict(name, claim, "failed",
+                       f"{len(failures)} of {n} due windows fail; " + "; ".join(failures[:2]))
+    return Verdict(name, claim, "held",
+                   f"all {n} due windows hold; {len(windows) - n} not due")
+
+
+def recovery(result: Any, eps: float, settle_time: float, t_prime: float) -> Verdict:
+    """``|z1| < eps`` from each episode's ``max(T_e, T_s) + T'`` until the next episode."""
+    claim = (f"|z1| < {eps:g} regained by max(T_e, T_s) + T' after every saturation "
+             "episode, until the next")
+    z1 = np.abs(np.asarray(result.z1, dtype=float))
+
+    def bad(mask: np.ndarray) -> str:
+        worst = float(np.max(z1[mask])) if mask.any() else 0.0
+        return "" if not mask.any() or worst < eps else f"max |z1| = {worst:.3g}"
+
+    return _windows_verdict("recovery", claim, result, settle_time, t_prime, bad)
+
+
+def nominal_again(result: Any, settle_time: float, t_prime: float) -> Verdict:
+    """The bounds are nominal again in every due recovery window."""
+    claim = "bounds nominal again by max(T_e, T_s) + T' after every saturation episode"
+    exp = _expanded(result)
+    if exp is None:
+        return Verdict("nominal-again", claim, "untested", "diagnostics were not recorded")
+
+    def bad(mask: np.ndarray) -> str:
+        n = int(np.count_nonzero(exp[mask]))
+        return f"expanded at {n} samples" if n else ""
+
+    return _windows_verdict("nominal-again", claim, result, settle_time, t_prime, bad)

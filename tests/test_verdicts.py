@@ -1,0 +1,233 @@
+"""Every verdict famcc prints can fail: a bad run per claim, and the metrics behind them.
+
+The claims are those of :mod:`famcc.verdicts` (docs/design.md §6). Each test
+builds a run that breaks one claim -- on the paper's own scenarios with one
+setting made bad (a too slow or unstable differentiator, a too weak gain, a
+too loose accuracy) -- and asserts that the claim fails; synthetic runs pin
+the boundaries between held, failed and untested exactly.
+"""
+
+from __future__ import annotations
+
+import famcc
+import numpy as np
+import pytest
+from famcc import scenarios, verdicts
+
+H = famcc.HighGain
+
+
+def _by_name(found: list[verdicts.Verdict]) -> dict[str, verdicts.Verdict]:
+    return {v.name: v for v in found}
+
+
+def _run(name: str, **kw):
+    sc = scenarios.paper(name)
+    res = sc.run(**kw)
+    return sc, res, _by_name(sc.verdicts(res))
+
+
+# -- synthetic runs: exact boundaries -----------------------------------------------
+
+def _result(z1, v=None, limits=None, expanded=None, dt=0.01):
+    z1 = np.asarray(z1, dtype=float)
+    t = np.arange(z1.size) * dt
+    v = np.zeros_like(z1) if v is None else np.asarray(v, dtype=float)
+    r = famcc.SimResult(t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None], v=v,
+                        u=v if limits is None else np.clip(v, *limits), dt=dt, u_limits=limits)
+    if expanded is not None:
+        r.expanded = np.asarray(expanded, dtype=bool)
+        r.expansion = np.where(r.expanded, 2.0, 1.0)
+        r.xi_nominal = np.where(r.expanded, 1.5, 0.5)
+    return r
+
+
+def test_settling_held_failed_untested_at_the_bound():
+    z1 = np.where(np.arange(501) * 0.01 < 2.0, 1.0, 0.0)       # settles at 2.00 s
+    r = _result(z1)
+    assert verdicts.settling(r, 0.1, 1.0, 1.0).status == "held"      # bound 2.0 s
+    assert verdicts.settling(r, 0.1, 1.0, 0.99).status == "failed"   # bound 1.99 s
+    assert verdicts.settling(r, 0.1, 1.0, 4.01).status == "untested"  # bound 5.01 s > 5 s
+    never = _result(np.ones(501))
+    v = verdicts.settling(never, 0.1, 1.0, 1.0)
+    assert v.status == "failed" and "never" in v.detail
+
+
+def test_settling_bound_counts_saturation_that_ends_after_the_preset_time():
+    t = np.arange(501) * 0.01
+    z1 = np.where(t < 2.5, 1.0, 0.0)
+    v = np.where((t >= 1.5) & (t < 2.0), 10.0, 0.0)               # saturated until T_e = 2 s
+    r = _result(z1, v=v, limits=(-1.0, 1.0))
+    assert verdicts.settling(r, 0.1, 1.0, 0.5).status == "held"      # bound max(2, 1) + 0.5
+    assert verdicts.settling(r, 0.1, 1.0, 0.4).status == "failed"
+
+
+def test_unsaturated_and_nominal_ignore_the_startup_only():
+    n = 101
+    v = np.zeros(n)
+    v[:10] = 50.0                                                   # 0-0.09 s: start-up
+    exp = np.zeros(n, dtype=bool)
+    exp[:10] = True
+    r = _result(np.zeros(n), v=v, limits=(-1.0, 1.0), expanded=exp)
+    assert verdicts.unsaturated(r, 0.1).status == "held"
+    assert verdicts.nominal(r, 0.1).status == "held"
+    v[60] = 50.0
+    exp[60] = True
+    r = _result(np.zeros(n), v=v, limits=(-1.0, 1.0), expanded=exp)
+    assert verdicts.unsaturated(r, 0.1).status == "failed"
+    assert verdicts.nominal(r, 0.1).status == "failed"
+    assert "0.600 s" in verdicts.nominal(r, 0.1).detail
+
+
+def test_recovery_windows_due_and_not_due():
+    t = np.arange(1001) * 0.01                                      # 10 s
+    v = np.where(((t >= 1.0) & (t < 2.0)) | ((t >= 3.0) & (t < 3.5)), 9.0, 0.0)
+    z1 = np.where(t < 2.2, 1.0, 0.0)
+    r = _result(z1, v=v, limits=(-1.0, 1.0))
+    # T' = 0.5: episode 1 ends 2.0, due 2.5 < next start 3.0 (due); episode 2 ends 3.5, due 4.0.
+    w = verdicts.recovery_windows(r, 1.0, 0.5)
+    assert [round(x, 6) for x in w[0]] == [2.0, 2.5, 3.0]
+    assert verdicts.recovery(r, 0.1, 1.0, 0.5).status == "held"
+    # T' = 1.5: episode 1 due 3.5 > 3.0 (pre-empted); episode 2 due 5.0: still due, and held.
+    v2 = verdicts.recovery(r, 0.1, 1.0, 1.5)
+    assert v2.status == "held" and "1 not due" in v2.detail
+    # T' = 7: no window falls due in 10 s.
+    assert verdicts.recovery(r, 0.1, 1.0, 7.0).status == "untested"
+    # The error leaves the band in a due window: fails.
+    z1b = z1.copy()
+    z1b[(t > 4.2) & (t < 4.3)] = 0.5
+    assert verdicts.recovery(_result(z1b, v=v, limits=(-1.0, 1.0)), 0.1, 1.0, 0.5).failed
+
+
+def test_nominal_again_fails_when_bounds_stay_expanded_with_headroom():
+    t = np.arange(1001) * 0.01
+    v = np.where(t < 1.0, 9.0, 0.0)
+    exp = t < 1.0
+    r = _result(np.zeros(t.size), v=v, limits=(-1.0, 1.0), expanded=exp)
+    assert verdicts.nominal_again(r, 1.0, 1.0).status == "held"
+    r = _result(np.zeros(t.size), v=v, limits=(-1.0, 1.0), expanded=t < 6.0)
+    assert verdicts.nominal_again(r, 1.0, 1.0).failed
+
+
+def test_a_run_saturated_to_the_end_has_no_due_window():
+    r = _result(np.ones(301), v=np.full(301, 5.0), limits=(-1.0, 1.0))
+    assert verdicts.recovery(r, 0.1, 1.0, 0.5).status == "untested"
+    v = verdicts.settles(r, 0.1, within=10.0)
+    assert v.failed and "saturated 100 %" in v.detail
+
+
+def test_verdict_rejects_unknown_status_and_counts():
+    with pytest.raises(ValueError, match="status"):
+        verdicts.Verdict("x", "claim", "ok", "")
+    found = [verdicts.Verdict("a", "", "held", ""), verdicts.Verdict("b", "", "failed", ""),
+             verdicts.Verdict("c", "", "untested", "")]
+    assert verdicts.count(found) == {"held": 1, "failed": 1, "untested": 1, "tested": 2,
+                                     "total": 3}
+
+
+# -- the paper's scenarios with one thing made bad: each claim fails --------------
+
+def test_issue_example_euler_100hz_saturated_run_fails_its_check():
+    sc, res, v = _run("finite-time-saturated", dt=1e-2, substeps=40,
+                      differentiator=H(0.01, [4.0, 4.0], discretization="euler"))
+    assert res.saturated_fraction > 0.95 and res.settling_time(0.1) is None
+    assert v["settles"].failed
+    assert sc.check(res) != []
+    assert v["recovery"].status == "untested"          # saturation never ended: not "held"
+
+
+def test_settling_fails_with_an_unstable_euler_differentiator_at_100hz():
+    _, _res, v = _run("finite-time", dt=1e-2, substeps=40,
+                     differentiator=H(0.01, [4.0, 4.0], discretization="euler"))
+    assert v["settling"].failed
+    assert v["nominal"].failed
+
+
+def test_settling_fails_with_a_differentiator_too_slow_for_the_plant():
+    _, _, v = _run("finite-time", differentiator=H(0.3, [4.0, 4.0]))
+    assert v["settling"].failed and "never" in v["settling"].detail
+
+
+def test_nominal_fails_although_settling_holds_tustin_100hz():
+    _, res, v = _run("finite-time", dt=1e-2, substeps=40,
+                     differentiator=H(0.01, [4.0, 4.0], discretization="tustin"))
+    assert v["settling"].status == "held"
+    assert v["nominal"].failed
+    # The evidence: |xi~| stayed below 1 (by construction), the nominal xi did not.
+    assert res.max_abs_xi < 1.0 < res.max_abs_xi_nominal
+    assert res.expanded_unsaturated_fraction > 0.1
+
+
+def test_unsaturated_fails_when_rfc_sits_on_its_limits_at_100hz():
+    _, _, v = _run("rfc", dt=1e-2, substeps=40,
+                   differentiator=H(0.01, [4.0, 6.0, 4.0], discretization="tustin"))
+    assert v["unsaturated"].failed
+
+
+def test_recovery_fails_with_a_gain_too_weak_for_the_load():
+    _, res, v = _run("finite-time-saturated", k_u=0.5)
+    assert v["recovery"].failed
+    assert v["nominal-again"].failed
+    assert res.expanded_unsaturated_fraction > 0.3
+
+
+def test_recovery_fails_when_the_controller_is_built_for_a_looser_accuracy():
+    _, _, v = _run("finite-time-saturated", eps=0.5)
+    assert v["recovery"].failed
+
+
+def test_nominal_again_fails_when_bounds_stay_expanded_after_saturation():
+    _, _, v = _run("finite-time-saturated", k_u=1.0)
+    assert v["nominal-again"].failed
+
+
+def test_bound_beyond_a_short_horizon_is_untested_not_held():
+    sc, res, v = _run("finite-time", t_end=2.0)
+    assert res.settling_time(0.1) is not None         # it did settle ...
+    assert v["settling"].status == "untested"         # ... but the claim is about t >= 3 s
+    assert sc.check(res) == []
+
+
+def test_saturated_scenario_runs_until_a_recovery_claim_falls_due():
+    sc = scenarios.paper("variable-exponent-saturated", "code")
+    res = sc.run()
+    assert float(res.t[-1]) > sc.t_end                 # extended past the paper's 10 s
+    v = _by_name(sc.verdicts(res))
+    assert v["recovery"].status == "held" and "due windows hold" in v["recovery"].detail
+    assert sc.run(t_end=10.0).t[-1] == pytest.approx(10.0)   # an explicit horizon is kept
+
+
+def test_paper_numbers_rfc_saturated_fail_settling_as_a_known_failure():
+    sc = scenarios.paper("rfc-saturated", "paper")
+    res = sc.run(t_end=10.0)
+    v = _by_name(sc.verdicts(res))
+    assert v["settles"].failed and v["settles"].known
+    assert sc.check(res) and "known" in sc.check(res)[0]
+
+
+# -- SimResult's new per-sample records and metrics -------------------------------
+
+def test_simresult_records_nominal_xi_expansion_and_saturation():
+    sc = scenarios.paper("finite-time-saturated")
+    res = sc.run(t_end=6.0)
+    assert res.xi_nominal is not None and res.expansion is not None
+    assert np.all(res.expansion >= 1.0)
+    # xi~ = xi / factor, the factor is > 1 exactly where the bounds are expanded
+    np.testing.assert_allclose(res.xi, res.xi_nominal / res.expansion, rtol=1e-12)
+    assert np.array_equal(res.expansion > 1.0, res.expanded)
+    lo, hi = sc.u_limits
+    assert np.array_equal(res.saturated, (res.v < lo) | (res.v > hi))
+    assert res.max_abs_xi_nominal > 1.0 > res.max_abs_xi
+    assert res.expanded_fraction == pytest.approx(float(np.mean(res.expanded)))
+    assert 0.0 <= res.expanded_unsaturated_fraction <= res.expanded_fraction
+
+
+def test_steady_rms_is_the_rms_after_settling():
+    t = np.arange(11) * 0.1
+    z1 = np.array([1.0, 0.5, 0.2, 0.05, -0.05, 0.05, -0.05, 0.03, -0.03, 0.03, -0.03])
+    r = _result(z1, dt=0.1)
+    assert r.settling_time(0.1) == pytest.approx(0.3)
+    expected = float(np.sqrt(np.mean(z1[3:] ** 2)))
+    assert r.steady_rms(0.1) == pytest.approx(expected)
+    assert _result(np.ones(5)).steady_rms(0.1) is None
+    assert t.size == z1.size
