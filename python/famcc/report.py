@@ -32,7 +32,7 @@ __all__ = ["Progress", "measure", "reproduce", "write_report"]
 #: The differentiator's start-up window, s: inputs before it are reported apart.
 STARTUP = 0.15
 
-#: SPEC section 5 in a few lines: what differs between the two variants.
+#: docs/design.md §6 in a few lines: what differs between the two variants.
 VARIANT_DIFFERENCES = (
     ("second-order plant: disturbance `3 sin t + 3 cos 2t` in the authors' code, "
      "`sin t + cos 2t` in the paper"),
@@ -338,7 +338,7 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
         + (" (the numbers of the authors' public MATLAB code, the default)" if variant == "code"
            else " (the numbers printed in the paper)")
         + f"; `famcc reproduce --variant {other}` runs the other one. They differ because the "
-        "paper and the code disagree (SPEC section 5): "
+        "paper and the code disagree (docs/design.md §6): "
         + "; ".join(VARIANT_DIFFERENCES) + ". With the paper's printed disturbance amplitude 1 "
         "the saturated second-order runs barely saturate; with the code's amplitude 3 they do."
     )
@@ -397,7 +397,7 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
                 f"- **{r['scenario']}** is an unsaturated scenario (limits "
                 f"[{r['u_limits'][0]:g}, {r['u_limits'][1]:g}]) but v left the limits during "
                 f"{_episodes_text(r['saturation_episodes'])}: the differentiator's start-up "
-                "peaking (SPEC section 5). The check therefore uses the recovery bound "
+                "peaking (docs/design.md §7.1). The check therefore uses the recovery bound "
                 f"max(T_e, T_s) + T' = {r['bound']:.3g} s."
             )
     for r in records:
@@ -448,7 +448,7 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
                      f"{r['max_abs_z1_last_second']:.3g}).")
             if not r["regains_accuracy_claimed"]:
                 line += (" This is the documented behaviour of the paper's own numbers "
-                         "(SPEC section 5: with variant \"paper\" the saturated third-order run "
+                         "(docs/design.md §6: with variant \"paper\" the saturated third-order run "
                          "does not regain 0.1 accuracy within 10 s; with the authors' numbers it "
                          "does); it is reported, not tuned away, and the check only tests the "
                          "invariants here.")
