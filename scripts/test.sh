@@ -2,17 +2,48 @@
 # Installs what the tests need and runs every test: Rust (fmt, clippy, unit,
 # property, golden and closed-loop tests, the no_std build), Python (pytest),
 # and the firmware check (cross-build, emulated closed loops, C ABI).
+#
+# Python: inside a virtual environment (activated, or python3 itself is one)
+# everything is installed into and run with that environment. Otherwise the
+# script makes its own in .venv-test/ (reused on later runs), so the system
+# Python is never modified.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python3 -m pip install --quiet --disable-pip-version-check -e '.[test]'
+
+in_venv() { # python -> status 0 if that interpreter runs in a virtual environment
+    "$1" -c 'import sys; sys.exit(0 if sys.prefix != sys.base_prefix else 1)' 2>/dev/null
+}
+if [ -n "${VIRTUAL_ENV:-}" ] && [ -x "$VIRTUAL_ENV/bin/python" ]; then
+    PY="$VIRTUAL_ENV/bin/python"
+elif in_venv python3; then
+    PY=$(python3 -c 'import sys; print(sys.executable)')
+else
+    VENV="$PWD/.venv-test"
+    if ! in_venv "$VENV/bin/python"; then
+        echo "creating the test environment $VENV (python3 -m venv)"
+        rm -rf "$VENV"
+        python3 -m venv "$VENV" || {
+            echo "error: python3 -m venv failed (on Debian/Ubuntu: apt-get install python3-venv)" >&2
+            exit 1
+        }
+        "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check --upgrade pip
+    fi
+    PY="$VENV/bin/python"
+    # As if activated: whatever the steps below start finds this environment first.
+    export VIRTUAL_ENV="$VENV"
+    export PATH="$VENV/bin:$PATH"
+fi
+echo "python: $PY ($("$PY" -c 'import sys; print(sys.version.split()[0])'))"
+
+"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test]'
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
 cargo test -p famcc-core
 cargo build -p famcc-core --no-default-features
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
-ruff check python tests benches examples
-python3 -m pytest -q
+"$PY" -m ruff check python tests benches examples
+"$PY" -m pytest -q
 # famcc-core in f32 on a Cortex-M4F under QEMU, and the C ABI (installs its
 # Debian packages with apt-get when missing).
 bash scripts/firmware-check.sh

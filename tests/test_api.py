@@ -1,4 +1,4 @@
-"""The public Python API (SPEC section 4): construction, stepping, diagnostics,
+"""The public Python API (docs/design.md §5): construction, stepping, diagnostics,
 copies and pickles, building blocks, the corollaries' bounds, f32 vs f64 cores,
 and the examples."""
 

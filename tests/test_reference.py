@@ -1,7 +1,7 @@
 """The compiled controller against the pure-Python reference (famcc.reference).
 
 The reference is an independent implementation of the same discrete-time law
-(SPEC section 2) in ``math`` only; it is the test oracle for the Rust core.
+(docs/design.md §3) in ``math`` only; it is the test oracle for the Rust core.
 Both controllers are fed the same recorded error sequence (open-loop replay, so
 no closed-loop amplification) and must agree at every sample.
 
@@ -28,7 +28,7 @@ Tolerances, and why:
 
 When ``|xi|`` must be clamped (flexible boundary off, or on with
 ``d_sc >> rho_e`` after an outlier) both clamp to the largest float below 1
-(``1 - 2^-53``, SPEC section 2); ``test_clamp_value_is_largest_float_below_one``
+(``1 - 2^-53``, docs/design.md §3.6); ``test_clamp_value_is_largest_float_below_one``
 checks the value. Elsewhere clamped samples are excluded from the comparison
 (the clamp events themselves must coincide).
 """

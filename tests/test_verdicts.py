@@ -1,6 +1,6 @@
 """Every verdict famcc prints can fail: a bad run per claim, and the metrics behind them.
 
-The claims are those of :mod:`famcc.verdicts` (docs/design.md §6). Each test
+The claims are those of :mod:`famcc.verdicts` (docs/design.md §8). Each test
 builds a run that breaks one claim -- on the paper's own scenarios with one
 setting made bad (a too slow or unstable differentiator, a too weak gain, a
 too loose accuracy) -- and asserts that the claim fails; synthetic runs pin

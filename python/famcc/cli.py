@@ -56,7 +56,7 @@ def _parser() -> argparse.ArgumentParser:
                         help="output directory (default: ./famcc-out)")
         sp.add_argument("--variant", choices=scenarios.VARIANTS, default="code",
                         help="scenario numbers: the authors' code (default) or the printed "
-                             "paper (SPEC section 5)")
+                             "paper (docs/design.md §6)")
         sp.add_argument("--scenario", dest="scenarios", nargs="+", action="extend",
                         choices=names, metavar="NAME",
                         help=f"scenario(s) to run (default: all): {', '.join(names)}")

@@ -49,7 +49,7 @@ __all__ = [
     "third_order",
 ]
 
-#: The variants every paper plant supports (see SPEC section 5).
+#: The variants every paper plant supports (see docs/design.md §6.3).
 VARIANTS = ("paper", "code")
 
 ScalarFn = Callable[[Any, Any], Any]

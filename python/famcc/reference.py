@@ -1,7 +1,7 @@
 """A pure-Python reference implementation of the FAMCC control law (a test oracle).
 
 :class:`ReferenceController` computes the same discrete-time controller as the
-compiled :class:`famcc.Controller` (SPEC section 2), written independently from
+compiled :class:`famcc.Controller` (docs/design.md §3), written independently from
 the paper's definitions with the ``math`` module only: no call into
 ``famcc._core`` and no NumPy anywhere. It exists to
 check the compiled core (``tests/test_reference.py``) and as a readable
@@ -14,7 +14,7 @@ flexible boundary on or off, both latches, the exact/Euler/Tustin
 differentiator with optional estimate limits, initial derivative estimates and
 the ``applied`` argument.
 
-Discrete-time semantics (SPEC section 2), in the order of ``step(e_k)``:
+Discrete-time semantics (docs/design.md §3.2), in the order of ``step(e_k)``:
 
 1. at ``k = 0`` the estimate is ``Zhat_0 = (e_0, d_2, ..., d_n)`` (``d_i`` the
    initial derivatives, zeros by default); otherwise the stored ``Zhat_k``,
@@ -39,7 +39,7 @@ Derivatives (order 3): ``s_2 = z_2 - h_1(z_1)`` and
 ``ds_2/dt = z_3 - h_1'(z_1) z_2``; every ``h`` below comes with its slope
 ``h'`` written out analytically (SSMD/NSMD by the product rule on the
 transitions). At ``s = 0`` the NSMD blend ``T_2 = U(s/eps_z)`` and its slope are
-exactly zero, so only the linear branch ``-k_p s`` is evaluated (SPEC section 3).
+exactly zero, so only the linear branch ``-k_p s`` is evaluated (docs/design.md §4.2).
 
 The differentiator's ``Phi``/``Gamma`` are the exact zero-order-hold
 discretization (``Phi = exp(M dt)``, ``M = A - H C``; ``Gamma`` from the unit DC
@@ -76,8 +76,8 @@ __all__ = [
     "transition_t",
 ]
 
-#: The largest float below 1 (SPEC section 2: ``xi`` is clamped "to the largest
-#: value below 1 that keeps the output finite"; both Gamma maps are finite there).
+#: The largest float below 1 (docs/design.md §3.6: ``xi`` is clamped to the largest
+#: floating-point number below 1; both Gamma maps are finite there).
 CLAMP_LIMIT = 1.0 - 2.0**-53
 
 _INF = math.inf
@@ -244,7 +244,7 @@ class _FiniteTime(_Law):
         return -self.k * _spow(s, self.p), -self.k * _dspow(s, self.p)
 
     def closed_inverse(self, y: float) -> float | None:
-        # SPEC errata: h^-1(y) = -sign(y) |y/k|^(1/p)
+        # Erratum (docs/errata.md, eq. nfn): h^-1(y) = -sign(y) |y/k|^(1/p)
         return -_spow(y / self.k, 1.0 / self.p)
 
 

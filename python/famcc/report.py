@@ -35,7 +35,7 @@ from famcc.verdicts import STARTUP
 
 __all__ = ["Progress", "measure", "reproduce", "write_report"]
 
-#: SPEC section 5 in a few lines: what differs between the two variants.
+#: docs/design.md §6 in a few lines: what differs between the two variants.
 VARIANT_DIFFERENCES = (
     ("second-order plant: disturbance `3 sin t + 3 cos 2t` in the authors' code, "
      "`sin t + cos 2t` in the paper"),
@@ -444,7 +444,7 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
         + (" (the numbers of the authors' public MATLAB code, the default)" if variant == "code"
            else " (the numbers printed in the paper)")
         + f"; `famcc reproduce --variant {other}` runs the other one. They differ because the "
-        "paper and the code disagree (SPEC section 5): "
+        "paper and the code disagree (docs/design.md §6): "
         + "; ".join(VARIANT_DIFFERENCES) + ". With the paper's printed disturbance amplitude 1 "
         "the saturated second-order runs barely saturate; with the code's amplitude 3 they do."
     )
@@ -503,7 +503,7 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
                 f"- **{r['scenario']}** is an unsaturated scenario (limits "
                 f"[{r['u_limits'][0]:g}, {r['u_limits'][1]:g}]) but v left the limits during "
                 f"{_episodes_text(r['saturation_episodes'])}: the differentiator's start-up "
-                "peaking (SPEC section 5). The settling claim therefore uses "
+                "peaking (docs/design.md §7.1). The settling claim therefore uses "
                 f"max(T_e, T_s) + T' = {r['bound']:.3g} s."
             )
     for r in records:
@@ -571,7 +571,7 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
                      "[-22, 30], far outside [-7, 9]) never regains 0.1 accuracy within 10 s; "
                      "its *settles* claim then fails, marked as known (docs/errata.md).")
     notes.append(
-        "- **What the guarantees are** (`Scenario.verdicts`, docs/design.md §6). Each claim is "
+        "- **What the guarantees are** (`Scenario.verdicts`, docs/design.md §8). Each claim is "
         "held, failed or untested, and a test shows each one failing on a bad run. A scenario "
         "designed without saturation (limits +-100): *settling*, |z1| < 0.1 for good from "
         "max(T_e, T_s) + T' on (T_e > 0 only when the start-up peaking saturated, Corollaries "

@@ -16,7 +16,7 @@ rfc-saturated             3      same, u in [-7, 9]
 ``variant="paper"`` uses the numbers printed in the paper; ``variant="code"``
 those of the authors' MATLAB code (second-order disturbance amplitude 3,
 third-order x(0) = (1, 0.5, 4) and eps_y = 3, the authors' envelope latch);
-see SPEC section 5 and the README.
+see docs/design.md §6 and the README.
 
 >>> import famcc
 >>> sc = famcc.scenarios.paper("finite-time")

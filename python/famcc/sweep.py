@@ -507,7 +507,7 @@ def write_sweep_report(records: Sequence[dict], out: str | Path, meta: dict,
          "`scenario.run(dt=1/rate, substeps=max(1, ceil(dt / 1e-4)))`, so the plant's RK4 step "
          "is at most 0.1 ms at every rate (10 substeps at 1 kHz, as in `famcc reproduce`). "
          "A run **keeps its guarantees** when none of the claims of `scenario.verdicts` "
-         "fails (docs/design.md §6): for the scenarios designed without saturation, settling "
+         "fails (docs/design.md §8): for the scenarios designed without saturation, settling "
          "within max(T_e, T_s) + T', no saturation and nominal bounds after the first "
          f"{STARTUP:g} s; for the saturated ones, settled by 10 s, and |z1| < 0.1 and nominal "
          "bounds again after every saturation episode whose recovery bound falls due. "

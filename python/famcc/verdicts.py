@@ -4,7 +4,7 @@ Every function here looks at a :class:`famcc.SimResult` and returns a
 :class:`Verdict` whose status is ``"held"``, ``"failed"`` or ``"untested"``.
 A claim is *untested* when the run cannot decide it, for instance when its
 bound lies beyond the horizon; it is never reported as held then
-(docs/design.md §6).
+(docs/design.md §8).
 
 ``|xi~| < 1`` is deliberately not a verdict: once the flexible boundary has
 expanded it holds by construction (``xi~ = d / (d + rho_e)``). What can fail

@@ -1,4 +1,4 @@
-//! The FAMCC controller: a real-time discrete controller (SPEC section 2).
+//! The FAMCC controller: a real-time discrete controller (docs/design.md §3).
 //!
 //! Each [`Controller::step`] takes one sample of the output error
 //! `e = y - y_d` and returns the control `v = -k_u Gamma(xi~)` (eqs. uOF, WuT)
@@ -476,7 +476,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
         };
         let mut xi = xi_nominal / factor;
         let mut clamps = 0;
-        // The largest float below 1 (SPEC section 2): Gamma stays finite.
+        // The largest float below 1 (docs/design.md §3.6): Gamma stays finite.
         let limit = T::one() - T::epsilon() * T::c(0.5);
         if xi.abs() > limit {
             xi = if xi > T::zero() { limit } else { -limit };

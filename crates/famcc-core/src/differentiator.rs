@@ -16,7 +16,7 @@
 //!
 //! The system is linear and time-invariant, so it is turned into the
 //! recursion `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` once, for a fixed `dt`
-//! (SPEC section 2), by one of three [`Discretization`]s. The default,
+//! (docs/design.md §3.3), by one of three [`Discretization`]s. The default,
 //! [`Discretization::Exact`], is the zero-order-hold solution: stable for
 //! every `dt`.
 //!

@@ -196,7 +196,7 @@ impl<T: Real> Feedback<T> {
     pub fn inverse_closed_form(&self, y: T) -> Option<T> {
         match *self {
             Feedback::Linear { k } => Some(-y / k),
-            // SPEC errata: s_fn = z1 + sign(z2) |z2 / k|^(1/p), not (1/k)|z2|^(1/p).
+            // Erratum (docs/errata.md, eq. nfn): s_fn = z1 + sign(z2) |z2 / k|^(1/p), not (1/k)|z2|^(1/p).
             Feedback::FiniteTime { k, p } => Some(-spow(y / k, T::one() / p)),
             _ => None,
         }

@@ -27,8 +27,8 @@
 use crate::Real;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
-/// A signal's value and its first `K - 1` time derivatives (paper section 3 of
-/// the SPEC: derivatives of nonlinear manifolds by jets).
+/// A signal's value and its first `K - 1` time derivatives (docs/design.md
+/// §4.1: derivatives of nonlinear manifolds by jets).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Jet<T, const K: usize> {
     /// Normalized Taylor coefficients `x^(k) / k!`.

@@ -3,7 +3,7 @@
 //! `s_1 = z1`, `s_{i+1} = d/dt s_i - h_mi(s_i)` for `i = 1..n-1`, `s = s_n`.
 //! The error vector `Z = (z1, ..., zn)` is the derivative list of `z1`, so
 //! `s_1` is a [`Jet`] and each stage is a shift and a subtraction: any order
-//! `N`, no hand-derived formulas (SPEC section 3).
+//! `N`, no hand-derived formulas (docs/design.md §4.1).
 //!
 //! ```
 //! use famcc_core::{manifold, Feedback, SkewedLaw};

@@ -8,7 +8,7 @@
 //! `k_p = k_pp (eps_s - h_p(eps_z))/eps_z`. Outside `±eps_z` both equal
 //! `h_p ± eps_s`; near 0 the NSMD is the line `-k_p s`, so it removes the
 //! infinite slope of power laws below 1 (and every derivative of `T2` vanishes
-//! at 0, SPEC section 3).
+//! at 0, docs/design.md §4.2).
 //!
 //! ```
 //! use famcc_core::{Feedback, Skew, SkewedLaw};

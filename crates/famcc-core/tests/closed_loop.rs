@@ -1,4 +1,4 @@
-//! Closed-loop outcomes on the paper's six scenarios (SPEC section 5), both
+//! Closed-loop outcomes on the paper's six scenarios (docs/design.md §6), both
 //! plant variants: controller at 1 kHz, plant by RK4 between samples.
 //!
 //! Run with `--nocapture` to see the measured figures.
@@ -252,7 +252,7 @@ fn saturated_recovery_after_every_episode_20s() {
 }
 
 /// With the paper's own numbers the saturated third-order run never regains
-/// 0.1 accuracy within 10 s (SPEC section 5): it stays finite with |xi~| < 1.
+/// 0.1 accuracy within 10 s (docs/design.md §6.4): it stays finite with |xi~| < 1.
 #[test]
 fn example3_saturated_paper_stays_bounded() {
     let limits = (-7.0, 9.0);

@@ -1,10 +1,10 @@
 //! Golden tests: famcc's building blocks against the paper authors' own MATLAB
 //! functions (repository Mudianrui/FAMCC-SAT, run in GNU Octave 7.3.0), stored
-//! as JSON in `shared/golden/` (see its README for the schema and mapping).
+//! as JSON in `tests/golden/` of this crate (see `tests/golden/README.md` for
+//! the schema and the mapping of each file to the famcc function it checks).
 //!
-//! Where the golden directory lives: `$FAMCC_GOLDEN_DIR` if set, otherwise
-//! `$CARGO_MANIFEST_DIR/../../../shared/golden` (the repository sits beside
-//! `shared/`). A missing directory or file FAILS the tests.
+//! The files are read from `$CARGO_MANIFEST_DIR/tests/golden`, inside the
+//! repository. A missing directory or file FAILS the tests.
 //!
 //! The JSON is read with a small parser in this file, not serde_json: serde_json's
 //! default number parsing is not correctly rounded (it reads 1.9900282485875707
@@ -58,9 +58,9 @@
 //! | skewedAlgorithm_dot_fm38_code | 12 | x^2 overflow at +-1e200: NaN (complex NaN for x < 0); true value +-inf, or 0 for dx = 0 | closed form |
 //! | skewedAlgorithm_dot_fm38_code | 6 | NaN at x = 0 (0 * log 0); true value -inf * dx (0 for dx = 0) | closed form |
 //!
-//! Totals: 672 deviations = 329 "use the real part" (the README's rule) +
-//! 343 compared to the closed form; the other 8,873 points are compared to
-//! the authors' values (9 of them with the subnormal floor above).
+//! Totals: 672 deviations = 329 "use the real part" (tests/golden/README.md,
+//! known faults) + 343 compared to the closed form; the other 8,873 points are
+//! compared to the authors' values (9 of them with the subnormal floor above).
 
 use famcc_core::{transition, Feedback, Jet, Skew, SkewedLaw, Transition};
 use std::collections::BTreeMap;
@@ -303,10 +303,7 @@ fn json_reader_is_correctly_rounded() {
 // ---------------------------------------------------------------------------
 
 fn golden_dir() -> PathBuf {
-    if let Some(d) = std::env::var_os("FAMCC_GOLDEN_DIR") {
-        return PathBuf::from(d);
-    }
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/golden")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
 }
 
 /// The authors' output at one point.
@@ -329,7 +326,7 @@ fn load(name: &str) -> Golden {
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
         panic!(
             "golden file {} cannot be read ({e}). The golden values are required: \
-             put shared/golden beside the repository or set FAMCC_GOLDEN_DIR.",
+             they are part of the repository (crates/famcc-core/tests/golden).",
             path.display()
         )
     });
@@ -418,8 +415,8 @@ fn golden_directory_is_present_and_complete() {
     let dir = golden_dir();
     assert!(
         dir.is_dir(),
-        "golden directory {} not found: the golden tests need shared/golden beside the \
-         repository (or FAMCC_GOLDEN_DIR)",
+        "golden directory {} not found: the golden tests need the repository's \
+         crates/famcc-core/tests/golden",
         dir.display()
     );
     for f in ALL_FILES {
@@ -526,7 +523,8 @@ mod reference {
         }
     }
 
-    /// The authors' feedback functions with unit gains (README table).
+    /// The authors' feedback functions with unit gains (tests/golden/README.md,
+    /// "What each file checks").
     pub fn h(ff: u32, x: f64) -> f64 {
         let sg = if x > 0.0 {
             1.0
@@ -639,7 +637,8 @@ fn transition_of(flag: f64) -> Transition {
     }
 }
 
-/// The authors' FFtype with unit outer gain, in famcc's terms (README table).
+/// The authors' FFtype with unit outer gain, in famcc's terms
+/// (tests/golden/README.md, "What each file checks").
 fn law_of(ff: f64) -> Feedback<f64> {
     match ff as u32 {
         0 => Feedback::Linear { k: 1.0 },
@@ -667,7 +666,7 @@ fn law_of(ff: f64) -> Feedback<f64> {
 
 /// skewedAlgorithm(x, FFtype, SAtype, eps_z, eps_s, kpp) as a famcc SkewedLaw.
 /// The golden files call the authors' function directly (unit gain kc = 1), so
-/// the offsets map one to one (README "Parametrisation note").
+/// the offsets map one to one (tests/golden/README.md, "Parametrisation").
 fn skewed_law_of(ff: f64, sa: f64, eps_z: f64, eps_s: f64, kpp: f64) -> SkewedLaw<f64> {
     let skew = match sa as u32 {
         0 => Skew::smooth(eps_s, eps_z),
@@ -808,8 +807,8 @@ fn law_reason(ins: &[f64], o: Out, reference: f64) -> &'static str {
     }
 }
 
-/// The reference for a law point: the real part where the README says it is
-/// the correct value, else the closed form.
+/// The reference for a law point: the real part where tests/golden/README.md
+/// says it is the correct value, else the closed form.
 fn law_reference(o: Out, closed: f64) -> f64 {
     match o {
         Out::Complex(re, _) if close(re, closed, 0.0) => re,

@@ -1,4 +1,4 @@
-//! The controller never touches the heap (SPEC section 6: "no heap").
+//! The controller never touches the heap (docs/design.md §9: no heap).
 //!
 //! A counting `#[global_allocator]` wraps `std::alloc::System`. Counting is
 //! per thread (a `const`-initialised thread-local, which itself never

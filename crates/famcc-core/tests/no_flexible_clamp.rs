@@ -1,9 +1,9 @@
 //! Without the flexible boundary (`rho_e = None`, the controller of eq. uT)
 //! nothing keeps a sampled loop inside `|xi| < 1`: a too slow sample rate or a
-//! disturbance beyond the design pushes `|xi|` to 1 between samples. SPEC
-//! section 2: the controller then clamps `xi` just below 1, counts the event
-//! in `diagnostics().clamp_count` and never returns NaN or infinity. With the
-//! flexible boundary on, the same settings never clamp.
+//! disturbance beyond the design pushes `|xi|` to 1 between samples. By
+//! docs/design.md §3.6 the controller then clamps `xi` just below 1, counts
+//! the event in `diagnostics().clamp_count` and never returns NaN or
+//! infinity. With the flexible boundary on, the same settings never clamp.
 //!
 //! Measured settings where clamping really happens (run with `--nocapture`):
 //! - example 1 (authors' plant, disturbance amplitude 3) sampled at 50 Hz
@@ -185,7 +185,7 @@ fn example3_at_50_hz_clamps_and_stays_finite_until_the_plant_escapes() {
         let r = run_checked(&plant, &mut plain, 5.0, UNSAT);
         println!("example 3 {variant:?}, 50 Hz, rho_e = None: {r:?}");
         assert!(r.clamps >= 10, "{}", r.clamps);
-        // 50 Hz is far too slow for this plant (SPEC: it needs ~500 Hz): the
+        // 50 Hz is far too slow for this plant (docs/design.md §7.1: it needs ~500 Hz): the
         // loop is lost either way, but the controller itself never fails.
         let mut flex = example3::<f64>(variant, 0.02);
         let r = run_checked(&plant, &mut flex, 5.0, UNSAT);

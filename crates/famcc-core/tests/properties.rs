@@ -1,7 +1,7 @@
 //! Property tests of the building blocks: the paper's Definitions 1-3
 //! (transitions), the envelope (eq. rho), the feedback laws (odd, decreasing,
 //! zero at zero), jet arithmetic (against finite differences and closed forms),
-//! NSMD smoothness at 0 (SPEC section 3), the linear manifold against eq. LFAM,
+//! NSMD smoothness at 0 (docs/design.md §4.2), the linear manifold against eq. LFAM,
 //! the Gamma maps, and the settling-time bounds of Corollaries 1-3.
 
 use famcc_core::envelope::{rho, Envelope, Latch};
@@ -730,7 +730,7 @@ fn signed_pow_at_zero_is_smooth_or_infinite_by_order() {
 }
 
 // ===========================================================================
-// NSMD is smooth at 0 (SPEC section 3)
+// NSMD is smooth at 0 (docs/design.md §4.2)
 // ===========================================================================
 
 fn nsmd_jet_finite<const K: usize>(law: &SkewedLaw<f64>, s: f64, d: &[f64; 5]) -> Result<(), TestCaseError> {

@@ -1,5 +1,5 @@
 //! Robustness of the public step API over arbitrary valid configurations and
-//! arbitrary inputs (SPEC sections 2, 3 and 6):
+//! arbitrary inputs (docs/design.md §3, §4 and §9):
 //!
 //! - every step returns `Ok(finite)` or `Err(StepError)`, never panics;
 //! - non-finite input gives `Err(StepError::NonFiniteInput)`;
@@ -183,7 +183,7 @@ fn first_n<const N: usize>(x: &[f64; 4]) -> [f64; N] {
     out
 }
 
-/// The error the rules of SPEC section 3 and section 6 predict for a spec:
+/// The error the rules of docs/design.md §4.3 predict for a spec:
 /// lateral/oblique at order 1, or a singular law without NSMD at a stage whose
 /// derivatives are needed (stage index < N - 2).
 fn predicted_error<const N: usize>(s: &Spec) -> Option<(&'static str, Option<usize>)> {

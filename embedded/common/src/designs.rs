@@ -1,4 +1,4 @@
-//! The paper's controller designs in famcc terms (SPEC section 5; the same
+//! The paper's controller designs in famcc terms (docs/design.md §6.2; the same
 //! values as `example1`/`example3` in `crates/famcc-core/tests/common`).
 
 use crate::plant::Variant;

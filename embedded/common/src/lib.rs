@@ -2,7 +2,7 @@
 //! (x86_64): the same f32 code runs on both, so their outputs can be
 //! compared bit for bit.
 //!
-//! - [`plant`]: the paper's second- and third-order plants (SPEC section 5,
+//! - [`plant`]: the paper's second- and third-order plants (docs/design.md §6.3,
 //!   variants "paper"/"code"), integrated in f32 by RK4 with substeps;
 //! - [`designs`]: the paper's example 1 and example 3 controllers in f32;
 //! - [`closed_loop`]: the sampled loop, its record and its checks;

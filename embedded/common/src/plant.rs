@@ -1,10 +1,10 @@
-//! The paper's plants (SPEC section 5) in f32, integrated by classical RK4
+//! The paper's plants (docs/design.md §6.3) in f32, integrated by classical RK4
 //! with the input held between samples. Same equations as
 //! `crates/famcc-core/tests/common/mod.rs` (there in f64).
 
 use libm::{cosf, sinf};
 
-/// Which printed numbers a plant uses (SPEC section 5).
+/// Which printed numbers a plant uses (docs/design.md §6.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Variant {
     /// As printed in the paper (disturbance amplitude 1 etc.).

@@ -1,4 +1,4 @@
-//! Shared closed-loop test support: the paper's plants (SPEC section 5),
+//! Shared closed-loop test support: the paper's plants (docs/design.md §6.3),
 //! RK4 integration between samples, and the paper's controller designs.
 #![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used)]
 
