@@ -15,7 +15,7 @@ Candidates (all fed recorded closed-loop errors of the paper's scenarios, varian
   t = 1 s (restored with ``set_state``, outside the per-call cost);
 - ``famcc finite-time/settled step(e, applied)``: the same with the optional
   argument passed (its parsing cost);
-- ``reference <design>/<phase>``: the pure-Python ``famcc.reference`` step;
+- ``reference <design>/<phase>``: the pure-Python oracle's step (``tests/oracle/reference.py``);
 - ``simple-pid``: ``PID(1, 0.1, 0.05, setpoint=0, sample_time=None)(x)``;
 - ``ControllerBank`` throughput (order 2, finite-time) at N = 1e3, 1e5, 1e6
   from a fresh (transient) and a settled controller, per-controller inputs (the
@@ -62,9 +62,12 @@ from pathlib import Path
 
 import famcc
 import numpy as np
-from famcc.reference import ReferenceController
 
 ROOT = Path(__file__).resolve().parents[1]
+# The pure-Python oracle lives with the tests (it is not shipped in the package).
+sys.path.insert(0, str(ROOT / "tests"))
+from oracle.reference import ReferenceController
+
 perf_ns = time.perf_counter_ns
 thread_ns = time.thread_time_ns
 process_ns = time.process_time_ns

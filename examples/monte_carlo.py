@@ -30,11 +30,11 @@ def rhs(t: float, x: np.ndarray, u: np.ndarray) -> np.ndarray:
 
 sc = famcc.scenarios.paper("finite-time")
 bank = famcc.ControllerBank(sc.controller(dt=DT), N)
-x = rng.uniform(-2.0, 2.0, size=(2, N))                 # random initial states
+x = rng.uniform(-2.0, 2.0, size=(2, N))  # random initial states
 steps = round(T_END / DT)
 z1_0 = x[0] - np.sin(0.0)
-bound = sc.settle_time + np.abs(z1_0) ** 0.5 / 0.5     # T_s + T_fn'(z1(0)), k = 1, p = 0.5
-last_out = np.full(N, -1)                               # last sample with |z1| >= 0.1
+bound = sc.settle_time + np.abs(z1_0) ** 0.5 / 0.5  # T_s + T_fn'(z1(0)), k = 1, p = 0.5
+last_out = np.full(N, -1)  # last sample with |z1| >= 0.1
 max_xi = np.zeros(N)
 h = DT / SUBSTEPS
 for k in range(steps + 1):
@@ -43,7 +43,7 @@ for k in range(steps + 1):
     last_out[np.abs(e) >= 0.1] = k
     u = np.clip(bank.step(e), -U_LIM, U_LIM)
     max_xi = np.maximum(max_xi, np.abs(bank.xi))
-    for j in range(SUBSTEPS):                           # RK4, u held over the sample
+    for j in range(SUBSTEPS):  # RK4, u held over the sample
         tj = t + j * h
         k1 = rhs(tj, x, u)
         k2 = rhs(tj + h / 2, x + h / 2 * k1, u)
@@ -51,10 +51,12 @@ for k in range(steps + 1):
         k4 = rhs(tj + h, x + h * k3, u)
         x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
 
-settled = last_out < steps                              # inside at the end of the horizon
+settled = last_out < steps  # inside at the end of the horizon
 settling_time = (last_out + 1) * DT
 print(f"{N} runs, x(0) uniform in [-2, 2]^2, {T_END} s at dt = {DT} s")
-print(f"settled to |z1| < 0.1:              {settled.mean():.1%} "
-      f"(median settling time {np.median(settling_time[settled]):.3f} s)")
+print(
+    f"settled to |z1| < 0.1:              {settled.mean():.1%} "
+    f"(median settling time {np.median(settling_time[settled]):.3f} s)"
+)
 print(f"settled within T_s + T_fn'(z1(0)):  {(settled & (settling_time <= bound)).mean():.1%}")
 print(f"max |xi~| over all runs = {max_xi.max():.4f} (< 1 by construction)")

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what the tests need and runs every test: Rust (fmt, clippy, unit,
-# property, golden and closed-loop tests, the no_std build), Python (pytest),
+# property, golden and closed-loop tests, the no_std build), Python (ruff,
+# mypy --strict, pytest, the docstring examples),
 # and the firmware check (cross-build, emulated closed loops, C ABI).
 #
 # Python: inside a virtual environment (activated, or python3 itself is one)
@@ -43,7 +44,10 @@ cargo build -p famcc-core --no-default-features
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 "$PY" -m ruff check python tests benches examples
+"$PY" -m mypy --strict python/famcc
 "$PY" -m pytest -q
+# The examples in the package's docstrings.
+"$PY" -m pytest -q --doctest-modules python/famcc
 # famcc-core in f32 on a Cortex-M4F under QEMU, and the C ABI (installs its
 # Debian packages with apt-get when missing).
 bash scripts/firmware-check.sh

@@ -22,8 +22,9 @@ EXAMPLES = ROOT / "examples"
 
 
 def example1(**kw) -> famcc.Controller:
-    return famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral",
-                            eps=0.1, k_u=5.0, **kw)
+    return famcc.Controller(
+        2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral", eps=0.1, k_u=5.0, **kw
+    )
 
 
 def _configs() -> dict[str, famcc.Controller]:
@@ -35,14 +36,30 @@ def _configs() -> dict[str, famcc.Controller]:
         "example3": famcc.scenarios.paper("rfc").controller(),
         "f32": famcc.scenarios.paper("rfc").controller(dtype="float32"),
         "oblique-rational": famcc.Controller(
-            2, 2e-3, famcc.FixedTime(1.0, 0.5, 0.5, 2.0), constraint="oblique",
-            eps=(0.1, 0.2), k_u=3.0, gamma="rational", latch="authors", transition="sine",
-            differentiator=famcc.HighGain(0.02, [4.0, 4.0], "tustin", limits=[5.0, 50.0])),
+            2,
+            2e-3,
+            famcc.FixedTime(1.0, 0.5, 0.5, 2.0),
+            constraint="oblique",
+            eps=(0.1, 0.2),
+            k_u=3.0,
+            gamma="rational",
+            latch="authors",
+            transition="sine",
+            differentiator=famcc.HighGain(0.02, [4.0, 4.0], "tustin", limits=[5.0, 50.0]),
+        ),
         "no-flex-init": famcc.Controller(
-            3, 1e-3, [famcc.Linear(2.0), ft], skew=[None, famcc.Smooth(0.1, 0.1, "cubic")],
-            eps=0.5, k_u=2.0, rho_e=None, k0=3.0, settle_time=0.5,
+            3,
+            1e-3,
+            [famcc.Linear(2.0), ft],
+            skew=[None, famcc.Smooth(0.1, 0.1, "cubic")],
+            eps=0.5,
+            k_u=2.0,
+            rho_e=None,
+            k0=3.0,
+            settle_time=0.5,
             initial_derivatives=[0.5, -0.25],
-            differentiator=famcc.HighGain.default(3, mu=0.02, discretization="euler")),
+            differentiator=famcc.HighGain.default(3, mu=0.02, discretization="euler"),
+        ),
         "order1": famcc.Controller(1, 1e-3, eps=0.1, k_u=1.0),
         "order4": famcc.Controller(4, 1e-3, famcc.Linear(3.0), eps=1.0, k_u=10.0),
     }
@@ -60,9 +77,11 @@ def _drive(ctrl: famcc.Controller, n: int, seed: int = 0) -> list[float]:
 
 # -- the README example --------------------------------------------------------------
 
+
 def test_readme_example():
-    ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
-                            constraint="lateral", eps=0.1, k_u=5.0)
+    ctrl = famcc.Controller(
+        2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral", eps=0.1, k_u=5.0
+    )
     res = famcc.simulate(second_order(), ctrl, t_end=4.0)
     ts = res.settling_time(0.1)
     assert ts is not None and ts < 1.0 + famcc.bounds.T_fn(1.0, 0.5, -1.0)
@@ -72,8 +91,14 @@ def test_readme_example():
 
 
 def _run_example(name: str, *args: str) -> str:
-    proc = subprocess.run([sys.executable, str(EXAMPLES / name), *args], check=False, cwd=ROOT,
-                          capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, str(EXAMPLES / name), *args],
+        check=False,
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return proc.stdout
 
@@ -99,12 +124,23 @@ def test_python_control_example_runs(capsys):
 
 # -- construction and repr ----------------------------------------------------------------
 
+
 def test_repr_shows_the_configuration():
     r = repr(example1())
-    for part in ("Controller(order=2", "dt=0.001", "feedback=[FiniteTime(k=1.0, p=0.5)]",
-                 "constraint='lateral'", "eps=0.1", "k_u=5.0", "k0=2.0", "gamma='log'",
-                 "rho_e=0.01", "HighGain(mu=0.01, a=[4.0, 4.0], discretization='exact')",
-                 "latch='paper'", "dtype='float64'"):
+    for part in (
+        "Controller(order=2",
+        "dt=0.001",
+        "feedback=[FiniteTime(k=1.0, p=0.5)]",
+        "constraint='lateral'",
+        "eps=0.1",
+        "k_u=5.0",
+        "k0=2.0",
+        "gamma='log'",
+        "rho_e=0.01",
+        "HighGain(mu=0.01, a=[4.0, 4.0], discretization='exact')",
+        "latch='paper'",
+        "dtype='float64'",
+    ):
         assert part in r, part
 
 
@@ -129,12 +165,19 @@ def test_config_round_trip_and_properties():
 
 
 def test_per_stage_values_broadcast():
-    one = famcc.Controller(3, 1e-3, famcc.Linear(2.0), skew=famcc.Smooth(0.1, 0.1), eps=1.0,
-                           k_u=1.0)
+    one = famcc.Controller(
+        3, 1e-3, famcc.Linear(2.0), skew=famcc.Smooth(0.1, 0.1), eps=1.0, k_u=1.0
+    )
     assert one.config()["feedback"] == [famcc.Linear(2.0)] * 2
     assert one.config()["skew"] == [famcc.Smooth(0.1, 0.1)] * 2
-    listed = famcc.Controller(3, 1e-3, (famcc.Linear(2.0), famcc.Linear(2.0)),
-                              skew=[famcc.Smooth(0.1, 0.1)] * 2, eps=1.0, k_u=1.0)
+    listed = famcc.Controller(
+        3,
+        1e-3,
+        (famcc.Linear(2.0), famcc.Linear(2.0)),
+        skew=[famcc.Smooth(0.1, 0.1)] * 2,
+        eps=1.0,
+        k_u=1.0,
+    )
     assert _drive(one, 30) == _drive(listed, 30)
 
 
@@ -146,6 +189,7 @@ def test_auto_differentiator_is_the_papers():
 
 
 # -- copies, pickles, state export -----------------------------------------------------------
+
 
 @pytest.mark.parametrize("how", ["pickle", "copy", "deepcopy", "state"])
 @pytest.mark.parametrize("name", list(CONFIGS))
@@ -159,14 +203,14 @@ def test_copies_continue_bit_identically(name, how):
     elif how == "deepcopy":
         other = copy.deepcopy(ctrl)
     else:
-        other = copy.copy(CONFIGS[name])          # fresh, same configuration
+        other = copy.copy(CONFIGS[name])  # fresh, same configuration
         other.set_state(ctrl.state())
     assert type(other) is famcc.Controller and other is not ctrl
     assert repr(other) == repr(ctrl)
     assert np.array_equal(other.state(), ctrl.state())
     assert other.time == ctrl.time
     a, b = _drive(ctrl, 300, seed=2), _drive(other, 300, seed=2)
-    assert a == b                                  # exact, every sample
+    assert a == b  # exact, every sample
     assert np.array_equal(other.state(), ctrl.state())
     assert repr(other.diagnostics) == repr(ctrl.diagnostics)
 
@@ -178,9 +222,9 @@ def test_copies_are_independent():
     state = ctrl.state()
     twin.step(5.0)
     assert np.array_equal(ctrl.state(), state)
-    state[:] = 0.0                                   # state() returns a copy
+    state[:] = 0.0  # state() returns a copy
     assert ctrl.state()[0] == 1.0
-    ctrl.diagnostics.z_hat[:] = 99.0                 # so does z_hat
+    ctrl.diagnostics.z_hat[:] = 99.0  # so does z_hat
     assert np.all(ctrl.diagnostics.z_hat != 99.0)
 
 
@@ -188,11 +232,11 @@ def test_state_layout_and_reset():
     ctrl = example1()
     fresh = ctrl.state()
     assert fresh.dtype == np.float64 and fresh.shape == (7 + ctrl.order,)
-    assert fresh[0] == 0.0 and fresh[2] == 0.0       # not started, k = 0
+    assert fresh[0] == 0.0 and fresh[2] == 0.0  # not started, k = 0
     v = ctrl.step(-1.0)
     s = ctrl.state()
     assert s[0] == 1.0 and s[2] == 1.0 and s[6] == v  # started, k = 1, last_v
-    assert s[3] == pytest.approx(2.0 * 1.0)           # rho0_x = k0 * |s_x0| (latched)
+    assert s[3] == pytest.approx(2.0 * 1.0)  # rho0_x = k0 * |s_x0| (latched)
     ctrl.step(-0.99)
     ctrl.reset()
     assert np.array_equal(ctrl.state(), fresh)
@@ -213,6 +257,7 @@ def test_set_state_keeps_clamp_count_and_last_output():
 
 # -- stepping and diagnostics ---------------------------------------------------------------------
 
+
 def test_diagnostics_fields():
     ctrl = example1()
     v0 = ctrl.step(-1.0)
@@ -220,14 +265,14 @@ def test_diagnostics_fields():
     assert isinstance(d, famcc.Diagnostics)
     assert d.t == 0.0 and d.v == v0
     assert isinstance(d.z_hat, np.ndarray) and d.z_hat.dtype == np.float64
-    assert d.z_hat.tolist() == [-1.0, 0.0]            # first estimate (e0, 0)
+    assert d.z_hat.tolist() == [-1.0, 0.0]  # first estimate (e0, 0)
     assert isinstance(d.stages, np.ndarray) and d.stages[0] == -1.0
     assert d.s == d.stages[-1] and d.s_prev == d.stages[-2]
     assert abs(d.xi) < 1.0 and isinstance(d.xi_nominal, float)
     assert isinstance(d.ds_prev, float)
     assert isinstance(d.bounds, tuple) and len(d.bounds) == 2
     assert d.nominal_bounds == d.bounds and d.bounds[0] == pytest.approx(2.0)
-    assert d.bounds[1] == 0.0                          # lateral: no vertical bound
+    assert d.bounds[1] == 0.0  # lateral: no vertical bound
     assert d.expanded is False and d.clamp_count == 0 and d.saturation_gap is None
     v1 = ctrl.step(-0.99, applied=3.0)
     d1 = ctrl.diagnostics
@@ -262,13 +307,21 @@ def test_time_and_step_dt():
     assert ctrl.time == pytest.approx(16e-3)
     # step_dt at the nominal period is exactly step
     a, b = example1(), example1()
-    assert [a.step_dt(x, 1e-3) for x in (-1.0, -0.9, -0.8)] == \
-        [b.step(x) for x in (-1.0, -0.9, -0.8)]
+    assert [a.step_dt(x, 1e-3) for x in (-1.0, -0.9, -0.8)] == [
+        b.step(x) for x in (-1.0, -0.9, -0.8)
+    ]
 
 
 def test_step_state_uses_the_measured_vector():
-    ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(1.0, 0.5), constraint="lateral",
-                            eps=0.1, k_u=5.0, differentiator=None)
+    ctrl = famcc.Controller(
+        2,
+        1e-3,
+        famcc.FiniteTime(1.0, 0.5),
+        constraint="lateral",
+        eps=0.1,
+        k_u=5.0,
+        differentiator=None,
+    )
     v = ctrl.step_state([-1.0, 0.5])
     assert ctrl.diagnostics.z_hat.tolist() == [-1.0, 0.5]
     assert math.isfinite(v)
@@ -286,8 +339,13 @@ def test_order_one_is_a_static_law():
 
 # -- building blocks -------------------------------------------------------------------------------
 
-LAWS = [famcc.Linear(2.0), famcc.FiniteTime(1.0, 0.5), famcc.FixedTime(1.0, 0.5, 0.5, 2.0),
-        famcc.VariableExponent(1.5, 0.5, 2.0, 3.0), famcc.MoulayDiscontinuous(1.0, 1.0, 0.5)]
+LAWS = [
+    famcc.Linear(2.0),
+    famcc.FiniteTime(1.0, 0.5),
+    famcc.FixedTime(1.0, 0.5, 0.5, 2.0),
+    famcc.VariableExponent(1.5, 0.5, 2.0, 3.0),
+    famcc.MoulayDiscontinuous(1.0, 1.0, 0.5),
+]
 
 
 @pytest.mark.parametrize("law", LAWS, ids=lambda law: type(law).__name__)
@@ -299,11 +357,11 @@ def test_laws_are_callable_on_floats_and_arrays(law):
     assert isinstance(law(0.7), float)
     assert law(x.reshape(13, 1)).shape == (13, 1)
     assert law([0.5, 1.0]).tolist() == [law(0.5), law(1.0)]
-    assert np.array_equal(law(-x), -y)                # odd
-    assert np.all(y[x > 0] < 0) and np.all(y[x < 0] > 0)   # negative feedback
+    assert np.array_equal(law(-x), -y)  # odd
+    assert np.all(y[x > 0] < 0) and np.all(y[x < 0] > 0)  # negative feedback
     if not isinstance(law, famcc.MoulayDiscontinuous):
         assert law(0.0) == 0.0
-        assert np.all(np.diff(y) < 0)                 # strictly decreasing
+        assert np.all(np.diff(y) < 0)  # strictly decreasing
         slope = law.slope(x[x != 0])
         assert np.all(slope < 0)
 
@@ -317,11 +375,16 @@ def test_law_values():
     assert famcc.FiniteTime(2.0, 0.5).slope(4.0) == pytest.approx(-0.5)
 
 
-@pytest.mark.parametrize("obj", LAWS + [famcc.Smooth(0.1, 0.2, "sine"),
-                                        famcc.Nonsingular(0.1, 0.2, 0.3),
-                                        famcc.HighGain(0.01, [4.0, 6.0, 4.0], "tustin",
-                                                       limits=[1.0, 2.0, 3.0])],
-                         ids=lambda o: type(o).__name__)
+@pytest.mark.parametrize(
+    "obj",
+    LAWS
+    + [
+        famcc.Smooth(0.1, 0.2, "sine"),
+        famcc.Nonsingular(0.1, 0.2, 0.3),
+        famcc.HighGain(0.01, [4.0, 6.0, 4.0], "tustin", limits=[1.0, 2.0, 3.0]),
+    ],
+    ids=lambda o: type(o).__name__,
+)
 def test_building_blocks_are_frozen_values(obj):
     first = next(n for n in ("k", "alpha", "beta", "eps_s", "mu") if hasattr(obj, n))
     with pytest.raises(AttributeError):
@@ -344,8 +407,8 @@ def test_skewed_laws():
         assert isinstance(h, famcc.Skewed) and "skewed(" in repr(h)
         y = h(x)
         assert isinstance(h(0.3), float) and y.shape == x.shape
-        assert np.allclose(h.inverse(y), x, atol=1e-9)      # h_v inverts h_m
-        assert np.all(np.diff(y) < 0)                       # still decreasing
+        assert np.allclose(h.inverse(y), x, atol=1e-9)  # h_v inverts h_m
+        assert np.all(np.diff(y) < 0)  # still decreasing
     assert famcc.skewed(law, famcc.Smooth(0.15, 0.1)).k_p == 0.0
     assert famcc.skewed(law, famcc.Nonsingular(0.2, 0.1, 0.1)).k_p > 0.0
 
@@ -358,13 +421,13 @@ def test_manifold_matches_eq_lfam_for_linear_laws(order):
     z = rng.uniform(-2.0, 2.0, size=order)
     s = famcc.manifold(z.tolist(), [famcc.Linear(float(k)) for k in b])
     assert isinstance(s, np.ndarray) and s.shape == (order,)
-    poly = np.array([1.0])                        # coefficients of D^j, lowest first
+    poly = np.array([1.0])  # coefficients of D^j, lowest first
     for i in range(order):
         expected = float(np.dot(poly, z[: len(poly)]))
         assert s[i] == pytest.approx(expected, rel=1e-12, abs=1e-12)
         if i < order - 1:
             poly = np.concatenate(([0.0], poly)) + b[i] * np.concatenate((poly, [0.0]))
-    if order > 1:                                 # a single law is used for every stage
+    if order > 1:  # a single law is used for every stage
         same = famcc.manifold(z, famcc.Linear(2.0))
         assert np.allclose(same, famcc.manifold(z, [famcc.Linear(2.0)] * (order - 1)))
 
@@ -409,7 +472,7 @@ def test_settling_bounds_of_the_papers_examples():
     assert 1.0 + b.T_fn(1.0, 0.5, -1.0) == 3.0
     assert round(1.0 + b.T_fxe(1.5, 0.5, 2.0, 3.0), 1) == 4.3
     assert 1.0 + b.T_fr([(1.0, 0.5, 0.5, 2.0), (2.0, 0.5, 1.0, 2.0)]) == pytest.approx(7.0)
-    assert b.finite_time(2.0, 0.5, 4.0) == pytest.approx(4.0 ** 0.5 / (2.0 * 0.5))
+    assert b.finite_time(2.0, 0.5, 4.0) == pytest.approx(4.0**0.5 / (2.0 * 0.5))
     for name in famcc.scenarios.names():
         sc = famcc.scenarios.paper(name)
         assert sc.bound == pytest.approx({1: 3.0, 2: 4.32, 3: 7.0}[sc.example], abs=0.01)

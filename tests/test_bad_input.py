@@ -78,10 +78,16 @@ STEP_ERRORS = [
     ("step_state nan", lambda c: c.step_state([NAN] + [0.0] * (c.order - 1)), "finite"),
     ("step_state inf last", lambda c: c.step_state([0.0] * (c.order - 1) + [INF]), "finite"),
     ("step_state applied", lambda c: c.step_state([0.0] * c.order, applied=-INF), "applied"),
-    ("step_state too short", lambda c: c.step_state([0.1] * (c.order - 1)),
-     r"z must have \d entries"),
-    ("step_state too long", lambda c: c.step_state([0.1] * (c.order + 1)),
-     r"z must have \d entries"),
+    (
+        "step_state too short",
+        lambda c: c.step_state([0.1] * (c.order - 1)),
+        r"z must have \d entries",
+    ),
+    (
+        "step_state too long",
+        lambda c: c.step_state([0.1] * (c.order + 1)),
+        r"z must have \d entries",
+    ),
     ("step_state empty", lambda c: c.step_state([]), r"z must have \d entries"),
     ("step_state strings", lambda c: c.step_state(["a"] * c.order), "sequence of floats"),
     ("step_state str", lambda c: c.step_state("abc"), "sequence of floats"),
@@ -105,13 +111,12 @@ def test_non_finite_first_sample_does_not_latch():
     for bad in (NAN, INF, -INF):
         with pytest.raises(famcc.StepError, match="state unchanged"):
             ctrl.step(bad)
-    assert ctrl.state()[0] == 0.0            # not started
+    assert ctrl.state()[0] == 0.0  # not started
     assert_same(ctrl, twin)
 
 
 def test_step_without_differentiator_points_to_step_state():
-    ctrl = famcc.Controller(2, 1e-3, L, constraint="lateral", eps=0.1, k_u=5.0,
-                            differentiator=None)
+    ctrl = famcc.Controller(2, 1e-3, L, constraint="lateral", eps=0.1, k_u=5.0, differentiator=None)
     twin = copy.copy(ctrl)
     with pytest.raises(famcc.StepError, match="step_state"):
         ctrl.step(0.5)
@@ -172,8 +177,7 @@ def test_bad_state_vectors_raise_config_error_and_change_nothing(pair, case):
 
 # -- configuration errors ----------------------------------------------------------
 
-BASE = {"order": 2, "dt": 1e-3, "feedback": L, "constraint": "lateral", "eps": 0.1,
-        "k_u": 5.0}
+BASE = {"order": 2, "dt": 1e-3, "feedback": L, "constraint": "lateral", "eps": 0.1, "k_u": 5.0}
 
 
 def _build(**changes):
@@ -216,8 +220,11 @@ CONFIG_ERRORS = [
     ("transition", lambda: _build(transition="linear"), "transition"),
     ("dtype", lambda: _build(dtype="float16"), "dtype"),
     ("differentiator str", lambda: _build(differentiator="exact"), "differentiator"),
-    ("differentiator a length",
-     lambda: _build(differentiator=famcc.HighGain(0.01, [4.0, 6.0, 4.0])), "differentiator.a"),
+    (
+        "differentiator a length",
+        lambda: _build(differentiator=famcc.HighGain(0.01, [4.0, 6.0, 4.0])),
+        "differentiator.a",
+    ),
     ("feedback missing", lambda: _build(feedback=None), "feedback"),
     ("feedback float", lambda: _build(feedback=1.0), "feedback"),
     ("feedback list of str", lambda: _build(order=3, feedback=["a", "b"]), "feedback"),
@@ -228,12 +235,13 @@ CONFIG_ERRORS = [
     ("skew str", lambda: _build(skew="nsmd"), "skew"),
     ("skew law", lambda: _build(skew=L), "skew"),
     ("skew needed at order 3", lambda: _build(order=3, constraint="longitudinal"), "skew"),
-    ("initial_derivatives length", lambda: _build(initial_derivatives=[0.0, 0.0]),
-     "initial_derivatives"),
-    ("initial_derivatives empty", lambda: _build(initial_derivatives=[]),
-     "initial_derivatives"),
-    ("initial_derivatives nan", lambda: _build(initial_derivatives=[NAN]),
-     "initial_derivatives"),
+    (
+        "initial_derivatives length",
+        lambda: _build(initial_derivatives=[0.0, 0.0]),
+        "initial_derivatives",
+    ),
+    ("initial_derivatives empty", lambda: _build(initial_derivatives=[]), "initial_derivatives"),
+    ("initial_derivatives nan", lambda: _build(initial_derivatives=[NAN]), "initial_derivatives"),
     ("lateral at order 1", lambda: _build(order=1, feedback=None), "constraint"),
     # building blocks
     ("Linear k 0", lambda: famcc.Linear(0.0), "k"),
@@ -270,12 +278,9 @@ CONFIG_ERRORS = [
     ("HighGain a nan", lambda: famcc.HighGain(0.01, [4.0, NAN]), "a"),
     ("HighGain a empty", lambda: famcc.HighGain(0.01, []), "a"),
     ("HighGain a 9", lambda: famcc.HighGain(0.01, [1.0] * 9), "a"),
-    ("HighGain discretization", lambda: famcc.HighGain(0.01, [4.0, 4.0], "rk4"),
-     "discretization"),
-    ("HighGain limits length", lambda: famcc.HighGain(0.01, [4.0, 4.0], limits=[1.0]),
-     "limits"),
-    ("HighGain limits 0", lambda: famcc.HighGain(0.01, [4.0, 4.0], limits=[1.0, 0.0]),
-     "limits"),
+    ("HighGain discretization", lambda: famcc.HighGain(0.01, [4.0, 4.0], "rk4"), "discretization"),
+    ("HighGain limits length", lambda: famcc.HighGain(0.01, [4.0, 4.0], limits=[1.0]), "limits"),
+    ("HighGain limits 0", lambda: famcc.HighGain(0.01, [4.0, 4.0], limits=[1.0, 0.0]), "limits"),
     ("HighGain.default order 0", lambda: famcc.HighGain.default(0), "order"),
     ("HighGain.default order 9", lambda: famcc.HighGain.default(9), "order"),
     ("HighGain.default mu", lambda: famcc.HighGain.default(2, mu=0.0), "mu"),
@@ -295,11 +300,16 @@ CONFIG_ERRORS = [
     ("transition kind", lambda: famcc.transition.S(0.5, kind="tanh"), "kind"),
     ("transition U kind", lambda: famcc.transition.U(0.5, "x"), "kind"),
     ("bounds finite_time p", lambda: famcc.bounds.finite_time(1.0, 1.0, 1.0), "p"),
-    ("bounds variable_exponent r_1", lambda: famcc.bounds.variable_exponent(1.0, 0.5, 1.0, 3.0),
-     "r_1"),
-    ("bounds fixed_time stage 2",
-     lambda: famcc.bounds.fixed_time([(1.0, 0.5, 0.5, 2.0), (2.0, 0.5, 1.0, 0.5)]),
-     "stage 2: q"),
+    (
+        "bounds variable_exponent r_1",
+        lambda: famcc.bounds.variable_exponent(1.0, 0.5, 1.0, 3.0),
+        "r_1",
+    ),
+    (
+        "bounds fixed_time stage 2",
+        lambda: famcc.bounds.fixed_time([(1.0, 0.5, 0.5, 2.0), (2.0, 0.5, 1.0, 0.5)]),
+        "stage 2: q",
+    ),
 ]
 
 
@@ -378,8 +388,11 @@ WRONG_TYPES = [
     ("order str", lambda: _build(order="2"), "order"),
     ("constraint int", lambda: _build(constraint=1), "constraint"),
     ("dtype type", lambda: _build(dtype=np.float32), "dtype"),
-    ("initial_derivatives strings", lambda: _build(initial_derivatives=["a"]),
-     "initial_derivatives"),
+    (
+        "initial_derivatives strings",
+        lambda: _build(initial_derivatives=["a"]),
+        "initial_derivatives",
+    ),
     ("initial_derivatives str", lambda: _build(initial_derivatives="a"), "initial_derivatives"),
     ("Linear str", lambda: famcc.Linear("1.0"), "k"),
     ("FixedTime None", lambda: famcc.FixedTime(1.0, 0.5, None, 2.0), "beta"),
@@ -433,8 +446,12 @@ def test_negative_order_is_a_config_error():
 def test_errors_leave_a_fresh_controller_fresh():
     ctrl = _build()
     twin = copy.copy(ctrl)
-    for call in (lambda: ctrl.step(NAN), lambda: ctrl.step_dt(0.1, 0.0),
-                 lambda: ctrl.set_state(ctrl.state()[:-1]), lambda: ctrl.step_state([0.1])):
+    for call in (
+        lambda: ctrl.step(NAN),
+        lambda: ctrl.step_dt(0.1, 0.0),
+        lambda: ctrl.set_state(ctrl.state()[:-1]),
+        lambda: ctrl.step_state([0.1]),
+    ):
         with pytest.raises(ValueError):
             call()
     assert ctrl.time == 0.0 and ctrl.state()[0] == 0.0

@@ -42,7 +42,7 @@ def test_bank_equals_copies_stepped_one_by_one(name):
         out = bank.step(e)
         ref = np.array([c.step(float(x)) for c, x in zip(copies, e)])
         assert out.dtype == np.float64 and out.shape == (n,)
-        assert np.array_equal(out, ref)                  # exact, sample by sample
+        assert np.array_equal(out, ref)  # exact, sample by sample
         assert np.array_equal(bank.xi, [c.diagnostics.xi for c in copies])
     for i in (0, n // 2, n - 1):
         assert np.array_equal(bank.controller(i).state(), copies[i].state())
@@ -84,11 +84,14 @@ def test_reset_restores_every_controller():
     assert np.array_equal(bank.step(np.linspace(-1.0, 1.0, 5)), first)
 
 
-@pytest.mark.parametrize("bad", [
-    np.array([0.1, np.nan, 0.2, 0.3]),
-    np.array([0.1, 0.2, 0.3, np.inf]),
-    np.array([-np.inf, 0.2, 0.3, 0.4]),
-])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        np.array([0.1, np.nan, 0.2, 0.3]),
+        np.array([0.1, 0.2, 0.3, np.inf]),
+        np.array([-np.inf, 0.2, 0.3, 0.4]),
+    ],
+)
 def test_non_finite_entry_raises_and_moves_no_controller(bad):
     ctrl = famcc.scenarios.paper("rfc").controller()
     bank = famcc.ControllerBank(ctrl, 4)
@@ -117,12 +120,15 @@ def test_wrong_length_raises_and_moves_no_controller(length):
     assert np.array_equal(bank.step(np.full(4, -0.4)), np.full(4, twin.step(-0.4)))
 
 
-@pytest.mark.parametrize("bad", [
-    np.zeros(4, dtype=np.int64),       # rejected, not converted: the message names float64
-    np.zeros(4, dtype=np.float32),
-    np.zeros((2, 2)),
-    [0.0, 0.0, 0.0, 0.0],
-])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        np.zeros(4, dtype=np.int64),  # rejected, not converted: the message names float64
+        np.zeros(4, dtype=np.float32),
+        np.zeros((2, 2)),
+        [0.0, 0.0, 0.0, 0.0],
+    ],
+)
 def test_wrong_type_raises_type_error_and_moves_no_controller(bad):
     ctrl = famcc.scenarios.paper("finite-time").controller()
     bank = famcc.ControllerBank(ctrl, 4)

@@ -19,7 +19,7 @@ import famcc
 import numpy as np
 import pytest
 from famcc.plants import StrictFeedback
-from famcc.simulate import Sine
+from famcc.simulation import Sine
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
@@ -33,15 +33,15 @@ freq = st.floats(0.2, 3.0, allow_nan=False)
 def stage(draw, i: int):
     """Coefficients of g_i and f_i (both depend on x_1..x_i and t only)."""
     return {
-        "g0": draw(st.floats(0.5, 3.0)),                 # nominal gain
-        "ga": draw(st.floats(0.0, 0.2)),                 # relative variation, < 0.2 g0
+        "g0": draw(st.floats(0.5, 3.0)),  # nominal gain
+        "ga": draw(st.floats(0.0, 0.2)),  # relative variation, < 0.2 g0
         "gw": draw(freq),
-        "gj": draw(st.integers(0, i)),                   # which x_j (j <= i) modulates g_i
-        "damp": draw(st.floats(0.1, 1.0)),               # mild -x_i damping
-        "da": draw(st.floats(0.0, 2.0)),                 # disturbance amplitude
+        "gj": draw(st.integers(0, i)),  # which x_j (j <= i) modulates g_i
+        "damp": draw(st.floats(0.1, 1.0)),  # mild -x_i damping
+        "da": draw(st.floats(0.0, 2.0)),  # disturbance amplitude
         "dw": draw(freq),
         "dp": draw(st.floats(0.0, 2 * math.pi)),
-        "nl": draw(st.floats(0.0, 0.3)),                 # bounded nonlinearity in x_1
+        "nl": draw(st.floats(0.0, 0.3)),  # bounded nonlinearity in x_1
     }
 
 
@@ -54,8 +54,10 @@ class _Plant(StrictFeedback):
 
     def rhs_fast(self, t, x, u):
         n = self.order
-        return tuple(float(self.g[i](x, t)) * (x[i + 1] if i + 1 < n else u)
-                     + float(self.f[i](x, t)) for i in range(n))
+        return tuple(
+            float(self.g[i](x, t)) * (x[i + 1] if i + 1 < n else u) + float(self.f[i](x, t))
+            for i in range(n)
+        )
 
     def output_derivatives(self, t, x):
         raise NotImplementedError
@@ -70,12 +72,15 @@ def make_plant(stages: list[dict], x0: list[float]) -> StrictFeedback:
     """
     g, f = [], []
     for i, c in enumerate(stages):
+
         def gi(x, t, c=c):
             return c["g0"] * (1.0 + c["ga"] * np.sin(c["gw"] * t + x[c["gj"]]))
 
         def fi(x, t, c=c, i=i):
-            return (-c["damp"] * x[i] + c["da"] * np.sin(c["dw"] * t + c["dp"])
-                    + c["nl"] * np.sin(x[0]))
+            return (
+                -c["damp"] * x[i] + c["da"] * np.sin(c["dw"] * t + c["dp"]) + c["nl"] * np.sin(x[0])
+            )
+
         g.append(gi)
         f.append(fi)
     return _Plant(g=g, f=f, x0=x0, name="random")
@@ -85,8 +90,9 @@ def make_plant(stages: list[dict], x0: list[float]) -> StrictFeedback:
 def closed_loop(draw, order: int):
     stages = [draw(stage(i)) for i in range(order)]
     x0 = draw(st.lists(st.floats(-1.5, 1.5), min_size=order, max_size=order))
-    ref = Sine(draw(st.floats(0.2, 1.5)), draw(st.floats(0.2, 2.0)),
-               draw(st.floats(0.0, 2 * math.pi)))
+    ref = Sine(
+        draw(st.floats(0.2, 1.5)), draw(st.floats(0.2, 2.0)), draw(st.floats(0.0, 2 * math.pi))
+    )
     low, high = draw(st.sampled_from([(0.3, 2.0), (2.0, 10.0), (10.0, 100.0)]))  # tight..wide
     limits = (-draw(st.floats(low, high)), draw(st.floats(low, high)))
     names = ["finite-time", "variable-exponent"] if order == 2 else ["rfc"]
@@ -99,8 +105,7 @@ def run(plant, ref, limits, name, t_end):
     n = plant.order
     # y_d .. y_d^(n-1) only: -F/G (which needs y_d^(n) and costly jets) is not needed.
     reference = [(lambda t, k=k: ref(t, k)) for k in range(n)]
-    return famcc.simulate(plant, ctrl, t_end, reference=reference, u_limits=limits,
-                          substeps=2)
+    return famcc.simulate(plant, ctrl, t_end, reference=reference, u_limits=limits, substeps=2)
 
 
 def assert_invariants(res, limits):
@@ -117,14 +122,27 @@ def assert_invariants(res, limits):
     assert np.all(res.bounds[used] >= res.nominal_bounds[used] * (1 - 1e-12))
 
 
-INVARIANT_SETTINGS = settings(max_examples=15, deadline=None, derandomize=True,
-                              suppress_health_check=[HealthCheck.too_slow])
+INVARIANT_SETTINGS = settings(
+    max_examples=15, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+)
 
 
 def _tight_case(order: int, name: str, limits: tuple[float, float]):
     """A hand-picked case that saturates hard: strong disturbance, tight limits."""
-    stages = [{"g0": 1.0 + 0.5 * i, "ga": 0.2, "gw": 2.0, "gj": i, "damp": 0.2, "da": 2.0,
-               "dw": 3.0, "dp": 0.5, "nl": 0.3} for i in range(order)]
+    stages = [
+        {
+            "g0": 1.0 + 0.5 * i,
+            "ga": 0.2,
+            "gw": 2.0,
+            "gj": i,
+            "damp": 0.2,
+            "da": 2.0,
+            "dw": 3.0,
+            "dp": 0.5,
+            "nl": 0.3,
+        }
+        for i in range(order)
+    ]
     return make_plant(stages, [1.5] + [-1.0] * (order - 1)), Sine(1.0, 2.0), limits, name
 
 
@@ -148,8 +166,20 @@ def test_xi_stays_inside_order_3(case):
 def test_random_plants_are_of_the_papers_class():
     """The generated plants have strict-feedback structure and a gain away from 0."""
     rng = np.random.default_rng(0)
-    stages = [{"g0": 0.5, "ga": 0.2, "gw": 1.0, "gj": i, "damp": 0.5, "da": 1.0, "dw": 1.0,
-               "dp": 0.0, "nl": 0.3} for i in range(3)]
+    stages = [
+        {
+            "g0": 0.5,
+            "ga": 0.2,
+            "gw": 1.0,
+            "gj": i,
+            "damp": 0.5,
+            "da": 1.0,
+            "dw": 1.0,
+            "dp": 0.0,
+            "nl": 0.3,
+        }
+        for i in range(3)
+    ]
     plant = make_plant(stages, [0.1, 0.2, 0.3])
     for _ in range(20):
         x, t = rng.uniform(-3, 3, 3), rng.uniform(0, 10)
@@ -169,11 +199,14 @@ def test_random_plants_are_of_the_papers_class():
 finite = st.floats(allow_nan=False, allow_infinity=False)
 non_finite = st.sampled_from([math.nan, math.inf, -math.inf])
 
-_DESIGNS = {name: famcc.scenarios.paper(name).controller(dt=1e-3)
-            for name in ("finite-time", "variable-exponent", "rfc")}
+_DESIGNS = {
+    name: famcc.scenarios.paper(name).controller(dt=1e-3)
+    for name in ("finite-time", "variable-exponent", "rfc")
+}
 _DESIGNS["rfc-f32"] = famcc.scenarios.paper("rfc").controller(dtype="float32")
-_DESIGNS["linear-no-flex"] = famcc.Controller(2, 1e-2, famcc.Linear(1.0), eps=0.1, k_u=1.0,
-                                              rho_e=None, gamma="rational")
+_DESIGNS["linear-no-flex"] = famcc.Controller(
+    2, 1e-2, famcc.Linear(1.0), eps=0.1, k_u=1.0, rho_e=None, gamma="rational"
+)
 
 
 def _consumed(before: np.ndarray, after: np.ndarray) -> bool:
@@ -182,8 +215,11 @@ def _consumed(before: np.ndarray, after: np.ndarray) -> bool:
 
 
 @settings(max_examples=60, deadline=None)
-@given(design=st.sampled_from(sorted(_DESIGNS)), errors=st.lists(finite, min_size=1, max_size=40),
-       applied=st.one_of(st.none(), finite))
+@given(
+    design=st.sampled_from(sorted(_DESIGNS)),
+    errors=st.lists(finite, min_size=1, max_size=40),
+    applied=st.one_of(st.none(), finite),
+)
 def test_step_output_is_finite_or_a_clean_error(design, errors, applied):
     ctrl = copy.copy(_DESIGNS[design])
     largest = 0.0
@@ -204,7 +240,8 @@ def test_step_output_is_finite_or_a_clean_error(design, errors, applied):
             # Nothing changed, or (core >= "recover from outliers") the valid
             # sample was consumed so that the estimate can decay again.
             assert np.array_equal(after, before) or (
-                "overflow" in str(exc) and _consumed(before, after))
+                "overflow" in str(exc) and _consumed(before, after)
+            )
             continue
         assert math.isfinite(v)
         d = ctrl.diagnostics
@@ -213,8 +250,9 @@ def test_step_output_is_finite_or_a_clean_error(design, errors, applied):
         assert math.isfinite(d.s) and np.all(np.isfinite(d.z_hat))
 
 
-@pytest.mark.parametrize("design, huge", [("rfc-f32", 1e11), ("rfc", 1e100),
-                                          ("finite-time", 1e155)])
+@pytest.mark.parametrize(
+    "design, huge", [("rfc-f32", 1e11), ("rfc", 1e100), ("finite-time", 1e155)]
+)
 def test_one_huge_sample_does_not_disable_the_controller(design, huge):
     """One outlier may cost some samples (StepError, hold the last output) but the
     controller must recover by itself as the differentiator's estimate decays."""
@@ -237,8 +275,12 @@ def test_one_huge_sample_does_not_disable_the_controller(design, huge):
 
 
 @settings(max_examples=40, deadline=None)
-@given(design=st.sampled_from(sorted(_DESIGNS)), warmup=st.lists(finite, max_size=5),
-       bad=non_finite, where=st.sampled_from(["e", "applied", "step_dt", "state"]))
+@given(
+    design=st.sampled_from(sorted(_DESIGNS)),
+    warmup=st.lists(finite, max_size=5),
+    bad=non_finite,
+    where=st.sampled_from(["e", "applied", "step_dt", "state"]),
+)
 def test_non_finite_input_raises_and_leaves_the_state(design, warmup, bad, where):
     ctrl = copy.copy(_DESIGNS[design])
     for e in warmup:
@@ -262,8 +304,10 @@ def test_non_finite_input_raises_and_leaves_the_state(design, warmup, bad, where
 
 
 @settings(max_examples=30, deadline=None)
-@given(design=st.sampled_from(sorted(_DESIGNS)),
-       z=st.lists(st.floats(-1e6, 1e6), min_size=3, max_size=3))
+@given(
+    design=st.sampled_from(sorted(_DESIGNS)),
+    z=st.lists(st.floats(-1e6, 1e6), min_size=3, max_size=3),
+)
 def test_step_state_output_is_finite(design, z):
     ctrl = copy.copy(_DESIGNS[design])
     assume(ctrl.order <= len(z))
@@ -272,6 +316,7 @@ def test_step_state_output_is_finite(design, z):
 
 
 # -- the paper's scenarios stay within the theoretical bounds -------------------------
+
 
 @pytest.mark.parametrize("variant", ["code", "paper"])
 @pytest.mark.parametrize("name", famcc.scenarios.names())

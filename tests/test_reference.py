@@ -1,4 +1,4 @@
-"""The compiled controller against the pure-Python reference (famcc.reference).
+"""The compiled controller against the pure-Python reference (tests/oracle/reference.py).
 
 The reference is an independent implementation of the same discrete-time law
 (docs/design.md §3) in ``math`` only; it is the test oracle for the Rust core.
@@ -43,7 +43,7 @@ from pathlib import Path
 import famcc
 import numpy as np
 import pytest
-from famcc.reference import CLAMP_LIMIT, ReferenceController, discretize_hgd
+from oracle.reference import CLAMP_LIMIT, ReferenceController, discretize_hgd
 
 DT = 1e-3
 SCENARIOS = [(n, v) for n in famcc.scenarios.names() for v in ("paper", "code")]
@@ -102,23 +102,59 @@ def pair(kwargs: dict, dt: float = DT, *, same_phi: bool = True, **ref_overrides
 
 def replay(ctrl, ref, e, applied=None):
     """Steps both with the same inputs; returns a dict of per-sample arrays."""
-    out = {k: [] for k in ("v_c", "v_r", "xi_c", "xi_r", "clamp_c", "clamp_r", "zh_c", "zh_r",
-                           "s_c", "s_r", "sp_c", "sp_r", "dsp_c", "dsp_r", "b_c", "b_r",
-                           "ex_c", "ex_r", "gap_c", "gap_r", "t_c", "t_r")}
+    out = {
+        k: []
+        for k in (
+            "v_c",
+            "v_r",
+            "xi_c",
+            "xi_r",
+            "clamp_c",
+            "clamp_r",
+            "zh_c",
+            "zh_r",
+            "s_c",
+            "s_r",
+            "sp_c",
+            "sp_r",
+            "dsp_c",
+            "dsp_r",
+            "b_c",
+            "b_r",
+            "ex_c",
+            "ex_r",
+            "gap_c",
+            "gap_r",
+            "t_c",
+            "t_r",
+        )
+    }
     for k, ek in enumerate(e):
         a = None if applied is None else applied[k]
         out["v_c"].append(ctrl.step(float(ek), a))
         out["v_r"].append(ref.step(float(ek), a))
         dc, dr = ctrl.diagnostics, ref.diagnostics
-        for key, attr in (("xi", "xi"), ("clamp", "clamp_count"), ("s", "s"), ("sp", "s_prev"),
-                          ("dsp", "ds_prev"), ("b", "bounds"), ("ex", "expanded"),
-                          ("gap", "saturation_gap"), ("t", "t")):
+        for key, attr in (
+            ("xi", "xi"),
+            ("clamp", "clamp_count"),
+            ("s", "s"),
+            ("sp", "s_prev"),
+            ("dsp", "ds_prev"),
+            ("b", "bounds"),
+            ("ex", "expanded"),
+            ("gap", "saturation_gap"),
+            ("t", "t"),
+        ):
             out[key + "_c"].append(getattr(dc, attr))
             out[key + "_r"].append(getattr(dr, attr))
         out["zh_c"].append(np.asarray(dc.z_hat, dtype=float))
         out["zh_r"].append(np.asarray(dr.z_hat, dtype=float))
-    return {k: np.asarray([np.nan if x is None else x for x in v] if k.startswith("gap")
-                          else v, dtype=float) for k, v in out.items()}
+    return {
+        k: np.asarray(
+            [np.nan if x is None else x for x in v] if k.startswith("gap") else v, dtype=float
+        )
+        for k, v in out.items()
+    }
 
 
 def mismatches(r, rtol, atol, xi_atol, mask=None):
@@ -133,8 +169,10 @@ def mismatches(r, rtol, atol, xi_atol, mask=None):
     if idx.size == 0:
         return idx, ""
     k = int(idx[0])
-    return idx, (f"{idx.size} samples disagree; first k={k}: v core={r['v_c'][k]!r} "
-                 f"ref={r['v_r'][k]!r}, xi core={r['xi_c'][k]!r} ref={r['xi_r'][k]!r}")
+    return idx, (
+        f"{idx.size} samples disagree; first k={k}: v core={r['v_c'][k]!r} "
+        f"ref={r['v_r'][k]!r}, xi core={r['xi_c'][k]!r} ref={r['xi_r'][k]!r}"
+    )
 
 
 def assert_diagnostics_agree(r, rtol=1e-9, atol=1e-12, after_clamp=None):
@@ -151,16 +189,16 @@ def assert_diagnostics_agree(r, rtol=1e-9, atol=1e-12, after_clamp=None):
     for key in ("s", "sp", "dsp", "b", "gap"):
         a, b = r[key + "_c"], r[key + "_r"]
         scale = np.nanmax(np.abs(a)) if np.any(np.isfinite(a)) else 1.0
-        np.testing.assert_allclose(b, a, rtol=rtol, atol=atol * max(scale, 1.0),
-                                   equal_nan=True, err_msg=key)
+        np.testing.assert_allclose(
+            b, a, rtol=rtol, atol=atol * max(scale, 1.0), equal_nan=True, err_msg=key
+        )
 
 
 def synthetic_error(n=3000, seed=0, dt=DT):
     """A decaying oscillation with a ripple and measurement noise."""
     rng = np.random.default_rng(seed)
     t = np.arange(n) * dt
-    return (1.5 * np.exp(-t) * np.cos(3 * t) + 0.05 * np.sin(17 * t)
-            + 1e-3 * rng.standard_normal(n))
+    return 1.5 * np.exp(-t) * np.cos(3 * t) + 0.05 * np.sin(17 * t) + 1e-3 * rng.standard_normal(n)
 
 
 # ---------------------------------------------------------------------------
@@ -200,8 +238,9 @@ def test_scenario_end_to_end_matches_core(name, variant):
 
 @pytest.mark.parametrize("order", [2, 3])
 @pytest.mark.parametrize("method", ["exact", "euler", "tustin"])
-@pytest.mark.parametrize("mu,dt", [(0.01, 1e-3), (0.01, 1e-4), (0.05, 2e-3), (0.01, 0.02),
-                                   (0.1, 0.05), (0.003, 0.05)])
+@pytest.mark.parametrize(
+    "mu,dt", [(0.01, 1e-3), (0.01, 1e-4), (0.05, 2e-3), (0.01, 0.02), (0.1, 0.05), (0.003, 0.05)]
+)
 def test_discretization_matches_core(order, method, mu, dt):
     """Entry by entry: 4e-15 relative, or 1e-14 of the entry's natural scale
     (``mu^(j-i)`` for ``Phi_ij``, ``mu^-i`` for ``Gamma_i``). The reference is exact
@@ -212,8 +251,9 @@ def test_discretization_matches_core(order, method, mu, dt):
     relative, 1.3e-15 of its scale, after 6 squarings of the augmented Pade matrix."""
     a = {2: [4.0, 4.0], 3: [4.0, 6.0, 4.0]}[order]
     law = famcc.Linear(1.0) if order == 2 else [famcc.Linear(1.0)] * 2
-    ctrl = famcc.Controller(order, dt, law, eps=1.0, k_u=1.0,
-                            differentiator=famcc.HighGain(mu, a, method))
+    ctrl = famcc.Controller(
+        order, dt, law, eps=1.0, k_u=1.0, differentiator=famcc.HighGain(mu, a, method)
+    )
     phi_c, gam_c = core_discretization(ctrl)
     phi_r, gam_r = discretize_hgd(mu, a, dt, method)
     for i in range(order):
@@ -231,8 +271,7 @@ def test_exact_discretization_solves_the_ode():
 
     def rhs(z, e):
         innov = e - z[0]
-        return [(z[i + 1] if i + 1 < 3 else 0.0) + a[i] / mu ** (i + 1) * innov
-                for i in range(3)]
+        return [(z[i + 1] if i + 1 < 3 else 0.0) + a[i] / mu ** (i + 1) * innov for i in range(3)]
 
     z0, e = [0.3, -2.0, 50.0], 1.7
     z, h = list(z0), dt / 2000
@@ -259,40 +298,87 @@ def cfg(order: int, **kw):
 
 EXTRA = {
     "linear2-lateral": cfg(2, feedback=L.Linear(2.0), constraint="lateral", eps=0.1, k_u=3.0),
-    "linear2-oblique": cfg(2, feedback=L.Linear(2.0), constraint="oblique", eps=(0.1, 0.2),
-                           k_u=3.0),
+    "linear2-oblique": cfg(
+        2, feedback=L.Linear(2.0), constraint="oblique", eps=(0.1, 0.2), k_u=3.0
+    ),
     "linear3-longitudinal": cfg(3, feedback=[L.Linear(2.0), L.Linear(3.0)], eps=0.5, k_u=3.0),
-    "linear3-lateral": cfg(3, feedback=[L.Linear(2.0), L.Linear(3.0)], constraint="lateral",
-                           eps=0.1, k_u=3.0, latch="authors"),
-    "linear3-oblique-rational": cfg(3, feedback=[L.Linear(2.0), L.Linear(3.0)],
-                                    constraint="oblique", eps=(0.1, 0.3), k_u=3.0,
-                                    gamma="rational"),
-    "finite2-lateral-ssmd": cfg(2, feedback=L.FiniteTime(1.0, 0.5), skew=L.Smooth(0.2, 0.1),
-                                constraint="lateral", eps=0.1, k_u=5.0),
-    "fixed2-oblique-nsmd": cfg(2, feedback=L.FixedTime(1.0, 0.5, 0.5, 2.0),
-                               skew=L.Nonsingular(0.2, 0.1, 0.1), constraint="oblique",
-                               eps=(0.1, 0.15), k_u=5.0),
-    "varexp3-nsmd-ssmd": cfg(3, feedback=[L.VariableExponent(1.5, 0.5, 2.0, 3.0),
-                                          L.FiniteTime(2.0, 0.6)],
-                             skew=[L.Nonsingular(0.1, 0.1, 0.5), L.Smooth(0.3, 0.2)],
-                             eps=1.0, k_u=10.0),
-    "transitions3": cfg(3, feedback=[L.Linear(1.0), L.FixedTime(1.0, 0.5, 1.0, 2.0)],
-                        skew=[L.Smooth(0.1, 0.1, "cubic"),
-                              L.Nonsingular(0.5, 0.2, 1.0, "sine")],
-                        eps=1.0, k_u=10.0, transition="quintic"),
-    "moulay2": cfg(2, feedback=L.MoulayDiscontinuous(1.0, 2.0, 1.0), eps=0.2, k_u=2.0,
-                   latch="authors"),
-    "limits-initial-derivatives": cfg(2, feedback=L.FiniteTime(1.0, 0.5), constraint="lateral",
-                                      eps=0.1, k_u=5.0, initial_derivatives=[0.5],
-                                      differentiator=L.HighGain(0.01, [4, 4], limits=[2, 3])),
-    "tustin3-oblique": cfg(3, feedback=[L.FixedTime(1.0, 0.5, 0.5, 2.0),
-                                        L.FixedTime(2.0, 0.5, 1.0, 2.0)],
-                           skew=[L.Nonsingular(0.1, 0.1, 0.1), L.Nonsingular(3.0, 0.2, 1.0)],
-                           constraint="oblique", eps=(0.5, 3.0), k_u=30.0,
-                           differentiator=L.HighGain(0.02, [4, 6, 4], "tustin")),
-    "euler2-no-flexible": cfg(2, feedback=L.VariableExponent(1.5, 0.5, 2.0, 3.0),
-                              skew=L.Smooth(0.15, 0.1), eps=0.15, k_u=2.0, rho_e=None,
-                              differentiator=L.HighGain(0.01, [4, 4], "euler")),
+    "linear3-lateral": cfg(
+        3,
+        feedback=[L.Linear(2.0), L.Linear(3.0)],
+        constraint="lateral",
+        eps=0.1,
+        k_u=3.0,
+        latch="authors",
+    ),
+    "linear3-oblique-rational": cfg(
+        3,
+        feedback=[L.Linear(2.0), L.Linear(3.0)],
+        constraint="oblique",
+        eps=(0.1, 0.3),
+        k_u=3.0,
+        gamma="rational",
+    ),
+    "finite2-lateral-ssmd": cfg(
+        2,
+        feedback=L.FiniteTime(1.0, 0.5),
+        skew=L.Smooth(0.2, 0.1),
+        constraint="lateral",
+        eps=0.1,
+        k_u=5.0,
+    ),
+    "fixed2-oblique-nsmd": cfg(
+        2,
+        feedback=L.FixedTime(1.0, 0.5, 0.5, 2.0),
+        skew=L.Nonsingular(0.2, 0.1, 0.1),
+        constraint="oblique",
+        eps=(0.1, 0.15),
+        k_u=5.0,
+    ),
+    "varexp3-nsmd-ssmd": cfg(
+        3,
+        feedback=[L.VariableExponent(1.5, 0.5, 2.0, 3.0), L.FiniteTime(2.0, 0.6)],
+        skew=[L.Nonsingular(0.1, 0.1, 0.5), L.Smooth(0.3, 0.2)],
+        eps=1.0,
+        k_u=10.0,
+    ),
+    "transitions3": cfg(
+        3,
+        feedback=[L.Linear(1.0), L.FixedTime(1.0, 0.5, 1.0, 2.0)],
+        skew=[L.Smooth(0.1, 0.1, "cubic"), L.Nonsingular(0.5, 0.2, 1.0, "sine")],
+        eps=1.0,
+        k_u=10.0,
+        transition="quintic",
+    ),
+    "moulay2": cfg(
+        2, feedback=L.MoulayDiscontinuous(1.0, 2.0, 1.0), eps=0.2, k_u=2.0, latch="authors"
+    ),
+    "limits-initial-derivatives": cfg(
+        2,
+        feedback=L.FiniteTime(1.0, 0.5),
+        constraint="lateral",
+        eps=0.1,
+        k_u=5.0,
+        initial_derivatives=[0.5],
+        differentiator=L.HighGain(0.01, [4, 4], limits=[2, 3]),
+    ),
+    "tustin3-oblique": cfg(
+        3,
+        feedback=[L.FixedTime(1.0, 0.5, 0.5, 2.0), L.FixedTime(2.0, 0.5, 1.0, 2.0)],
+        skew=[L.Nonsingular(0.1, 0.1, 0.1), L.Nonsingular(3.0, 0.2, 1.0)],
+        constraint="oblique",
+        eps=(0.5, 3.0),
+        k_u=30.0,
+        differentiator=L.HighGain(0.02, [4, 6, 4], "tustin"),
+    ),
+    "euler2-no-flexible": cfg(
+        2,
+        feedback=L.VariableExponent(1.5, 0.5, 2.0, 3.0),
+        skew=L.Smooth(0.15, 0.1),
+        eps=0.15,
+        k_u=2.0,
+        rho_e=None,
+        differentiator=L.HighGain(0.01, [4, 4], "euler"),
+    ),
     "order1": cfg(1, eps=0.1, k_u=2.0),
 }
 
@@ -353,10 +439,11 @@ def test_rejected_inputs_leave_both_unchanged():
 
 
 def test_default_rho_e_is_auto_like_the_core():
-    for kw in (cfg(2, feedback=L.Linear(1.0), constraint="lateral", eps=0.05, k_u=1.0),
-               cfg(2, feedback=L.Linear(1.0), eps=0.5, k_u=1.0),
-               cfg(3, feedback=[L.Linear(1.0)] * 2, constraint="oblique", eps=(0.3, 0.02),
-                   k_u=1.0)):
+    for kw in (
+        cfg(2, feedback=L.Linear(1.0), constraint="lateral", eps=0.05, k_u=1.0),
+        cfg(2, feedback=L.Linear(1.0), eps=0.5, k_u=1.0),
+        cfg(3, feedback=[L.Linear(1.0)] * 2, constraint="oblique", eps=(0.3, 0.02), k_u=1.0),
+    ):
         ctrl, ref = pair(kw)
         assert ref.rho_e == ctrl.config()["rho_e"]
         r = replay(ctrl, ref, 0.1 * synthetic_error(n=1500))
@@ -408,14 +495,17 @@ def test_clamp_value_is_largest_float_below_one():
 # the oracle can fail
 
 
-@pytest.mark.parametrize("scenario,change", [
-    (("finite-time", "code"), {"k_u": lambda kw: kw["k_u"] * (1 + 1e-7)}),
-    (("finite-time", "code"), {"eps": lambda kw: kw["eps"] * (1 + 1e-7)}),
-    (("finite-time", "code"), {"feedback": lambda kw: famcc.FiniteTime(k=1.0, p=0.5 + 1e-7)}),
-    (("finite-time", "paper"), {"settle_time": lambda kw: kw["settle_time"] * (1 + 1e-7)}),
-    # the flexible boundary expands in this run
-    (("variable-exponent-saturated", "code"), {"rho_e": lambda kw: kw["rho_e"] * (1 + 1e-7)}),
-])
+@pytest.mark.parametrize(
+    "scenario,change",
+    [
+        (("finite-time", "code"), {"k_u": lambda kw: kw["k_u"] * (1 + 1e-7)}),
+        (("finite-time", "code"), {"eps": lambda kw: kw["eps"] * (1 + 1e-7)}),
+        (("finite-time", "code"), {"feedback": lambda kw: famcc.FiniteTime(k=1.0, p=0.5 + 1e-7)}),
+        (("finite-time", "paper"), {"settle_time": lambda kw: kw["settle_time"] * (1 + 1e-7)}),
+        # the flexible boundary expands in this run
+        (("variable-exponent-saturated", "code"), {"rho_e": lambda kw: kw["rho_e"] * (1 + 1e-7)}),
+    ],
+)
 def test_oracle_detects_a_perturbed_reference(scenario, change):
     e, applied, _ = recorded(*scenario)
     kwargs = famcc.scenarios.paper(*scenario).controller_kwargs
@@ -441,8 +531,10 @@ def test_oracle_detects_a_perturbed_nsmd_offset():
     e, applied, _ = recorded(name, variant)
     kwargs = famcc.scenarios.paper(name, variant).controller_kwargs
     sk = kwargs["skew"]
-    skew = [famcc.Nonsingular(eps_s=sk[0].eps_s * (1 + 1e-7), eps_z=sk[0].eps_z,
-                              k_pp=sk[0].k_pp), sk[1]]
+    skew = [
+        famcc.Nonsingular(eps_s=sk[0].eps_s * (1 + 1e-7), eps_z=sk[0].eps_z, k_pp=sk[0].k_pp),
+        sk[1],
+    ]
     ctrl, ref = pair(kwargs, skew=skew)
     idx, _ = mismatches(replay(ctrl, ref, e, applied), LAW_RTOL, LAW_ATOL, LAW_XI_ATOL)
     assert idx.size > 0
@@ -454,13 +546,12 @@ def test_oracle_detects_a_perturbed_nsmd_offset():
 
 def test_reference_step_path_is_pure_python():
     """Standard library only (math, decimal, typing): no numpy, no famcc._core."""
-    import famcc.reference as mod
+    import oracle.reference as mod
 
     tree = ast.parse(Path(mod.__file__).read_text())
     imports = [n for n in ast.walk(tree) if isinstance(n, (ast.Import, ast.ImportFrom))]
     assert all(n in tree.body for n in imports)  # nothing imported lazily
     names = set()
     for node in imports:
-        names |= ({a.name for a in node.names} if isinstance(node, ast.Import)
-                  else {node.module})
+        names |= {a.name for a in node.names} if isinstance(node, ast.Import) else {node.module}
     assert names <= {"__future__", "math", "decimal", "typing", "collections.abc"}

@@ -28,7 +28,7 @@ def _assert_png(path: Path, min_bytes: int = 20_000, min_shape: tuple = (600, 80
     assert len(data) > min_bytes, f"{path} is only {len(data)} bytes"
     img = mpimg.imread(path)
     assert img.shape[0] >= min_shape[0] and img.shape[1] >= min_shape[1], img.shape
-    assert float(np.std(img[..., :3])) > 0.05      # not a blank canvas
+    assert float(np.std(img[..., :3])) > 0.05  # not a blank canvas
 
 
 def _summary(out: Path) -> dict:
@@ -37,16 +37,16 @@ def _summary(out: Path) -> dict:
 
 def test_reproduce_in_process_writes_figure_report_and_numbers_of_the_run(tmp_path):
     out = tmp_path / "out"
-    rc = cli.main(["reproduce", "--out", str(out), "--t-end", "2",
-                   "--scenario", "finite-time", "--quiet"])
+    rc = cli.main(
+        ["reproduce", "--out", str(out), "--t-end", "2", "--scenario", "finite-time", "--quiet"]
+    )
     assert rc == 0
     _assert_png(out / "finite-time.png")
     summary = _summary(out)
     # 2 s is shorter than the settling bound T_s + T' = 3 s: that claim is untested, not held.
     assert summary["no_guarantee_failed"] is True
     assert summary["all_guarantees_hold"] is False
-    assert summary["guarantees"] == {"held": 2, "failed": 0, "untested": 1, "tested": 2,
-                                     "total": 3}
+    assert summary["guarantees"] == {"held": 2, "failed": 0, "untested": 1, "tested": 2, "total": 3}
     assert summary["variant"] == "code"
     (rec,) = summary["scenarios"]
     assert rec["scenario"] == "finite-time"
@@ -69,13 +69,13 @@ def test_reproduce_in_process_writes_figure_report_and_numbers_of_the_run(tmp_pa
     report = (out / "report.md").read_text()
     assert "](finite-time.png)" in report
     results = report.split("## Results")[1].split("## Claims")[0]
-    assert results.count("| finite-time |") == 1         # one table row for the scenario
+    assert results.count("| finite-time |") == 1  # one table row for the scenario
     ts_text = f"{rec['settling_time']:.3f}".rstrip("0").rstrip(".")
     assert f"| finite-time | 2 | {ts_text} |" in results  # horizon, settling time
     claims = report.split("## Claims")[1].split("## Notes")[0]
-    assert claims.count("| finite-time |") == 3          # one row per claim
+    assert claims.count("| finite-time |") == 3  # one row per claim
     assert "**2 of 3 guarantees tested: 2 hold, 0 fail; 1 untested**" in report
-    assert "finite-time settling" in report.split("\n## ")[0]      # named in the headline
+    assert "finite-time settling" in report.split("\n## ")[0]  # named in the headline
     assert "Variant `code`" in report and "--variant paper" in report
     assert "paper" in report and "1.9" in report
 
@@ -84,11 +84,26 @@ def test_reproduce_as_a_subprocess(tmp_path):
     out = tmp_path / "sub"
     env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run(
-        [sys.executable, "-m", "famcc.cli", "reproduce", "--out", str(out), "--t-end", "2",
-         "--scenario", "rfc-saturated"],
-        capture_output=True, text=True, env=env, timeout=120, check=False)
+        [
+            sys.executable,
+            "-m",
+            "famcc.cli",
+            "reproduce",
+            "--out",
+            str(out),
+            "--t-end",
+            "2",
+            "--scenario",
+            "rfc-saturated",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+        check=False,
+    )
     assert proc.returncode == 0, proc.stderr
-    assert "[1/1]" in proc.stderr and "rfc-saturated" in proc.stderr   # progress bar
+    assert "[1/1]" in proc.stderr and "rfc-saturated" in proc.stderr  # progress bar
     _assert_png(out / "rfc-saturated.png")
     (rec,) = _summary(out)["scenarios"]
     res = scenarios.paper("rfc-saturated", "code").run(t_end=2.0)
@@ -102,8 +117,19 @@ def test_exit_status_and_headline_when_a_guarantee_fails(tmp_path):
     # time, but the sampled state leaves the nominal constraint set (the bounds expand
     # with the actuator far from its +-100 limits).
     out = tmp_path / "bad"
-    rc = cli.main(["reproduce", "--out", str(out), "--dt", "0.02", "--scenario",
-                   "finite-time", "--no-figures", "--quiet"])
+    rc = cli.main(
+        [
+            "reproduce",
+            "--out",
+            str(out),
+            "--dt",
+            "0.02",
+            "--scenario",
+            "finite-time",
+            "--no-figures",
+            "--quiet",
+        ]
+    )
     assert rc == 1
     summary = _summary(out)
     assert summary["no_guarantee_failed"] is False
@@ -116,8 +142,19 @@ def test_exit_status_and_headline_when_a_guarantee_fails(tmp_path):
 
 def test_a_diverging_run_is_reported_not_raised(tmp_path):
     out = tmp_path / "div"
-    rc = cli.main(["reproduce", "--out", str(out), "--dt", "0.05", "--scenario", "rfc",
-                   "--no-figures", "--quiet"])
+    rc = cli.main(
+        [
+            "reproduce",
+            "--out",
+            str(out),
+            "--dt",
+            "0.05",
+            "--scenario",
+            "rfc",
+            "--no-figures",
+            "--quiet",
+        ]
+    )
     assert rc == 1
     (rec,) = _summary(out)["scenarios"]
     assert rec["error"] and rec["verdict_counts"]["failed"] == 3
@@ -126,8 +163,9 @@ def test_a_diverging_run_is_reported_not_raised(tmp_path):
 
 def test_default_reproduce_never_reports_an_untested_guarantee_as_held(tmp_path):
     out = tmp_path / "rfc"
-    rc = cli.main(["reproduce", "--out", str(out), "--scenario", "rfc-saturated",
-                   "--no-figures", "--quiet"])
+    rc = cli.main(
+        ["reproduce", "--out", str(out), "--scenario", "rfc-saturated", "--no-figures", "--quiet"]
+    )
     assert rc == 0
     summary = _summary(out)
     (rec,) = summary["scenarios"]
@@ -142,8 +180,24 @@ def test_default_reproduce_never_reports_an_untested_guarantee_as_held(tmp_path)
 
 def test_paper_variant_and_usage_errors(tmp_path):
     out = tmp_path / "paper"
-    assert cli.main(["reproduce", "--out", str(out), "--t-end", "1", "--variant", "paper",
-                     "--scenario", "finite-time", "--no-figures", "--quiet"]) == 0
+    assert (
+        cli.main(
+            [
+                "reproduce",
+                "--out",
+                str(out),
+                "--t-end",
+                "1",
+                "--variant",
+                "paper",
+                "--scenario",
+                "finite-time",
+                "--no-figures",
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     assert _summary(out)["scenarios"][0]["variant"] == "paper"
     with pytest.raises(SystemExit) as exc:
         cli.main(["reproduce", "--scenario", "no-such-scenario"])
@@ -154,16 +208,32 @@ def test_paper_variant_and_usage_errors(tmp_path):
 
 def test_sweep_small(tmp_path):
     out = tmp_path / "sweep"
-    rc = cli.main(["sweep", "--out", str(out), "--scenario", "finite-time", "--rates", "500",
-                   "1000", "--discretization", "exact", "--t-end", "2", "--jobs", "1",
-                   "--quiet"])
+    rc = cli.main(
+        [
+            "sweep",
+            "--out",
+            str(out),
+            "--scenario",
+            "finite-time",
+            "--rates",
+            "500",
+            "1000",
+            "--discretization",
+            "exact",
+            "--t-end",
+            "2",
+            "--jobs",
+            "1",
+            "--quiet",
+        ]
+    )
     assert rc == 0
     data = json.loads((out / "sweep.json").read_text())
     recs = data["records"]
-    assert len(recs) == 4                      # 2 rates x 1 discretization x 2 limit settings
+    assert len(recs) == 4  # 2 rates x 1 discretization x 2 limit settings
     assert {r["limited"] for r in recs} == {False, True}
     plain = next(r for r in recs if r["rate_hz"] == 1000 and not r["limited"])
-    direct = scenarios.paper("finite-time").run(t_end=2.0)     # same dt, substeps, differentiator
+    direct = scenarios.paper("finite-time").run(t_end=2.0)  # same dt, substeps, differentiator
     assert plain["settling_time"] == direct.settling_time(0.1)
     assert plain["max_abs_xi"] == direct.max_abs_xi
     assert plain["ok"] is True
@@ -177,12 +247,28 @@ def test_sweep_small(tmp_path):
 
 def test_sweep_speaks_only_of_rates_it_ran_and_its_verdicts_can_fail(tmp_path):
     out = tmp_path / "rates"
-    rc = cli.main(["sweep", "--out", str(out), "--scenario", "finite-time",
-                   "finite-time-saturated", "--rates", "100", "1000", "--discretization",
-                   "exact", "euler", "--jobs", "2", "--quiet"])
+    rc = cli.main(
+        [
+            "sweep",
+            "--out",
+            str(out),
+            "--scenario",
+            "finite-time",
+            "finite-time-saturated",
+            "--rates",
+            "100",
+            "1000",
+            "--discretization",
+            "exact",
+            "euler",
+            "--jobs",
+            "2",
+            "--quiet",
+        ]
+    )
     assert rc == 0
     md = (out / "sweep.md").read_text()
-    assert "200 Hz" not in md                      # 200 Hz was never run
+    assert "200 Hz" not in md  # 200 Hz was never run
     assert "## 100 Hz next to 1000 Hz" in md and "At 100 Hz" in md
     recs = json.loads((out / "sweep.json").read_text())["records"]
     assert {r["rate_hz"] for r in recs} == {100.0, 1000.0}

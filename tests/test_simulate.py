@@ -1,4 +1,4 @@
-"""Tests of famcc.simulate: sample-and-hold loop, integrator accuracy, metrics, validation."""
+"""Tests of famcc.simulate (module famcc.simulation): sample-and-hold loop, integrator accuracy, metrics, validation."""
 
 from __future__ import annotations
 
@@ -6,14 +6,10 @@ import math
 import sys
 from types import SimpleNamespace
 
-import famcc.simulate  # noqa: F401  (the module, not the function famcc.simulate)
 import numpy as np
 import pytest
 from famcc import plants
-
-sim = sys.modules["famcc.simulate"]
-simulate, SimResult, Sine = sim.simulate, sim.SimResult, sim.Sine
-
+from famcc.simulation import SimResult, Sine, simulate
 
 # -- a mock controller with the duck-typed interface -----------------------------------------
 
@@ -37,9 +33,15 @@ class MockPD:
         factor = 1.0 + abs(v) / 10.0 if expanded else 1.0
         k = len(self.calls)
         return SimpleNamespace(
-            t=(k - 1) * self.dt, xi=v / 1000.0, s=float(k), s_prev=e, ds_prev=de,
-            bounds=(0.0, 0.5 * factor), nominal_bounds=(0.0, 0.5),
-            z_hat=np.array([e, de] + [0.0] * (self.order - 2)), expanded=expanded,
+            t=(k - 1) * self.dt,
+            xi=v / 1000.0,
+            s=float(k),
+            s_prev=e,
+            ds_prev=de,
+            bounds=(0.0, 0.5 * factor),
+            nominal_bounds=(0.0, 0.5),
+            z_hat=np.array([e, de] + [0.0] * (self.order - 2)),
+            expanded=expanded,
             clamp_count=3 * k,
         )
 
@@ -122,7 +124,7 @@ def test_sample_and_hold_and_controller_calls():
     calls = plant.calls
     assert len(calls) == (K - 1) * substeps * 4
     for k in range(K - 1):
-        chunk = calls[k * substeps * 4:(k + 1) * substeps * 4]
+        chunk = calls[k * substeps * 4 : (k + 1) * substeps * 4]
         assert all(u == res.u[k] for _, u in chunk)
         times = [t for t, _ in chunk]
         assert min(times) == pytest.approx(res.t[k]) and max(times) == pytest.approx(res.t[k + 1])
@@ -161,8 +163,9 @@ def test_true_error_vector_and_minus_f_over_g():
     res = simulate(plant, MockPD(dt=1e-2), t_end=1.0)
     for k in (0, 37, len(res.t) - 1):
         t, x = res.t[k], res.x[k]
-        np.testing.assert_allclose(res.z[k], plant.output_derivatives(t, x) - [np.sin(t),
-                                                                                np.cos(t)])
+        np.testing.assert_allclose(
+            res.z[k], plant.output_derivatives(t, x) - [np.sin(t), np.cos(t)]
+        )
         gain, drift = plant.gain_and_drift(t, x)
         # dz_n/dt = G u + F with F = F_a - y_d^(n); -F/G makes it vanish
         assert gain * res.neg_f_over_g[k] + (drift + np.sin(t)) == pytest.approx(0.0, abs=1e-12)
@@ -230,8 +233,13 @@ def test_fast_path_equals_numpy_path():
 def test_sine_derivatives():
     ref = Sine(amplitude=2.0, omega=3.0, phase=0.5)
     t = 0.8
-    expected = [2 * np.sin(2.9), 6 * np.cos(2.9), -18 * np.sin(2.9), -54 * np.cos(2.9),
-                162 * np.sin(2.9)]
+    expected = [
+        2 * np.sin(2.9),
+        6 * np.cos(2.9),
+        -18 * np.sin(2.9),
+        -54 * np.cos(2.9),
+        162 * np.sin(2.9),
+    ]
     np.testing.assert_allclose([ref(t, k) for k in range(5)], expected, rtol=1e-14)
     with pytest.raises(ValueError, match="amplitude"):
         Sine(amplitude=math.nan)
@@ -241,8 +249,9 @@ def test_reference_forms_are_equivalent():
     plant = plants.second_order()
     base = simulate(plant, MockPD(dt=1e-2), 1.0)
     as_callable = simulate(plant, MockPD(dt=1e-2), 1.0, reference=lambda t, k: Sine()(t, k))
-    as_tuple = simulate(plant, MockPD(dt=1e-2), 1.0,
-                        reference=(np.sin, np.cos, lambda t: -np.sin(t)))
+    as_tuple = simulate(
+        plant, MockPD(dt=1e-2), 1.0, reference=(np.sin, np.cos, lambda t: -np.sin(t))
+    )
     for other in (as_callable, as_tuple):
         np.testing.assert_allclose(other.x, base.x, rtol=1e-13, atol=1e-13)
         np.testing.assert_allclose(other.neg_f_over_g, base.neg_f_over_g, rtol=1e-12)
@@ -258,8 +267,11 @@ def test_other_reference_is_tracked():
     assert np.max(np.abs(res.z[res.t > 3, 0])) < 0.05
 
 
-def test_famcc_simulate_sine_is_reachable_from_the_function():
-    assert simulate.Sine is Sine and simulate.SimResult is SimResult
+def test_the_function_does_not_shadow_its_module():
+    import famcc
+
+    assert famcc.simulate is simulate and famcc.Sine is Sine and famcc.SimResult is SimResult
+    assert sys.modules["famcc.simulation"].simulate is simulate
 
 
 # -- plants without derivatives, record=False ------------------------------------------------
@@ -267,8 +279,17 @@ def test_famcc_simulate_sine_is_reachable_from_the_function():
 
 def test_record_false_needs_no_diagnostics():
     res = simulate(plants.second_order(), Zero(1e-2), 0.5, record=False)
-    for name in ("z_hat", "xi", "s", "s_prev", "ds_prev", "bounds", "nominal_bounds",
-                 "expanded", "neg_f_over_g"):
+    for name in (
+        "z_hat",
+        "xi",
+        "s",
+        "s_prev",
+        "ds_prev",
+        "bounds",
+        "nominal_bounds",
+        "expanded",
+        "neg_f_over_g",
+    ):
         assert getattr(res, name) is None
     assert res.max_abs_xi is None and res.largest_expansion is None
     assert res.summary()["clamp_count"] == 0
@@ -378,11 +399,20 @@ def make_result(z1, v=None, u_limits=None, bounds=None, nominal=None, expanded=N
     t = np.round(np.arange(len(z1)) * dt, 12)
     v = np.zeros_like(z1) if v is None else np.asarray(v, dtype=float)
     u = v if u_limits is None else np.clip(v, *u_limits)
-    return SimResult(t=t, y=z1, y_d=np.zeros_like(z1), x=z1[:, None], z=z1[:, None], v=v, u=u,
-                     dt=dt, u_limits=u_limits,
-                     bounds=None if bounds is None else np.asarray(bounds, dtype=float),
-                     nominal_bounds=None if nominal is None else np.asarray(nominal, dtype=float),
-                     expanded=None if expanded is None else np.asarray(expanded, dtype=bool))
+    return SimResult(
+        t=t,
+        y=z1,
+        y_d=np.zeros_like(z1),
+        x=z1[:, None],
+        z=z1[:, None],
+        v=v,
+        u=u,
+        dt=dt,
+        u_limits=u_limits,
+        bounds=None if bounds is None else np.asarray(bounds, dtype=float),
+        nominal_bounds=None if nominal is None else np.asarray(nominal, dtype=float),
+        expanded=None if expanded is None else np.asarray(expanded, dtype=bool),
+    )
 
 
 def test_settling_time_and_first_entry():
@@ -431,15 +461,21 @@ def test_expansion_metrics():
     assert r.nominal_return_time == 0.4
     never = make_result(np.zeros(6), bounds=nominal, nominal=nominal, expanded=[False] * 6)
     assert never.largest_expansion == 1.0 and never.nominal_return_time is None
-    stuck = make_result(np.zeros(6), bounds=bounds, nominal=nominal,
-                        expanded=[False, True, True, True, True, True])
+    stuck = make_result(
+        np.zeros(6), bounds=bounds, nominal=nominal, expanded=[False, True, True, True, True, True]
+    )
     assert stuck.nominal_return_time is None
 
 
 def test_summary_collects_the_metrics():
-    r = make_result([1.0, 0.05, 0.0], v=[9.0, 0.0, 0.0], u_limits=(-1.0, 1.0),
-                    bounds=[[1.0, 0.0], [1.0, 0.0], [1.0, 0.0]],
-                    nominal=[[1.0, 0.0], [1.0, 0.0], [1.0, 0.0]], expanded=[False] * 3)
+    r = make_result(
+        [1.0, 0.05, 0.0],
+        v=[9.0, 0.0, 0.0],
+        u_limits=(-1.0, 1.0),
+        bounds=[[1.0, 0.0], [1.0, 0.0], [1.0, 0.0]],
+        nominal=[[1.0, 0.0], [1.0, 0.0], [1.0, 0.0]],
+        expanded=[False] * 3,
+    )
     s = r.summary(eps=0.1)
     assert s["settling_time"] == 0.1 and s["first_entry"] == 0.1
     assert s["saturated_fraction"] == pytest.approx(1 / 3)

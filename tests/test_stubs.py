@@ -27,13 +27,14 @@ pytest.importorskip("mypy")
 
 ROOT = Path(__file__).resolve().parents[1]
 STUB = Path(famcc.__file__).with_name("_core.pyi")
-ALLOWLIST = ROOT / "tests" / "stubtest_allowlist.txt"   # not needed today
+ALLOWLIST = ROOT / "tests" / "stubtest_allowlist.txt"  # not needed today
 
 
 def _run(args: list[str], cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, PYTHONWARNINGS="ignore", MYPY_FORCE_COLOR="0")
-    return subprocess.run(args, check=False, cwd=cwd, env=env, capture_output=True, text=True,
-                          timeout=300)
+    return subprocess.run(
+        args, check=False, cwd=cwd, env=env, capture_output=True, text=True, timeout=300
+    )
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -44,8 +45,9 @@ def stubtest_run():
     if ALLOWLIST.is_file():
         args += ["--allowlist", str(ALLOWLIST)]
     env = dict(os.environ, PYTHONWARNINGS="ignore", MYPY_FORCE_COLOR="0")
-    proc = subprocess.Popen(args, cwd=ROOT, env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True)
+    proc = subprocess.Popen(
+        args, cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
+    )
     yield proc
     if proc.poll() is None:
         proc.kill()
@@ -58,6 +60,7 @@ def test_stub_file_exists_and_package_is_typed():
 
 
 # -- property annotations vs runtime values -------------------------------------
+
 
 def _stub_properties() -> dict[str, dict[str, str]]:
     """{class name: {property name: return annotation}} from the stub."""
@@ -94,8 +97,9 @@ _TYPES = {
 
 
 def _instances() -> dict[str, list[object]]:
-    ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(1.0, 0.5), constraint="lateral",
-                            eps=0.1, k_u=5.0)
+    ctrl = famcc.Controller(
+        2, 1e-3, famcc.FiniteTime(1.0, 0.5), constraint="lateral", eps=0.1, k_u=5.0
+    )
     ctrl.step(-1.0)
     gapped = famcc.Controller(2, 1e-3, famcc.Linear(1.0), eps=0.1, k_u=1.0)
     gapped.step(0.5)
@@ -103,8 +107,10 @@ def _instances() -> dict[str, list[object]]:
     bank = famcc.ControllerBank(ctrl, 3)
     bank.step(np.zeros(3))
     return {
-        "Controller": [ctrl, famcc.Controller(3, 1e-2, famcc.Linear(2.0), eps=0.5, k_u=1.0,
-                                              dtype="float32")],
+        "Controller": [
+            ctrl,
+            famcc.Controller(3, 1e-2, famcc.Linear(2.0), eps=0.5, k_u=1.0, dtype="float32"),
+        ],
         "Diagnostics": [ctrl.diagnostics, gapped.diagnostics],
         "ControllerBank": [bank],
         "Linear": [famcc.Linear(2.0)],
@@ -114,8 +120,10 @@ def _instances() -> dict[str, list[object]]:
         "MoulayDiscontinuous": [famcc.MoulayDiscontinuous(1.0, 1.0, 0.5)],
         "Smooth": [famcc.Smooth(0.15, 0.1)],
         "Nonsingular": [famcc.Nonsingular(0.1, 0.1, 0.1, "sine")],
-        "HighGain": [famcc.HighGain(0.01, [4.0, 4.0]),
-                     famcc.HighGain(0.01, [4.0, 4.0], "tustin", [10.0, np.inf])],
+        "HighGain": [
+            famcc.HighGain(0.01, [4.0, 4.0]),
+            famcc.HighGain(0.01, [4.0, 4.0], "tustin", [10.0, np.inf]),
+        ],
         "Skewed": [famcc.skewed(famcc.FiniteTime(1.0, 0.5), famcc.Nonsingular(0.1, 0.1, 0.1))],
     }
 
@@ -157,7 +165,7 @@ def test_every_runtime_public_name_is_stubbed():
 
 # -- mypy on typed usage ---------------------------------------------------------
 
-SNIPPET = '''
+SNIPPET = """
 from __future__ import annotations
 
 import copy
@@ -248,13 +256,25 @@ def _never_called() -> None:
 
 
 print("typed usage ok")
-'''
+"""
 
 
 def _mypy(paths: list[str], *extra: str) -> subprocess.CompletedProcess[str]:
-    return _run([sys.executable, "-m", "mypy", "--strict", "--warn-unused-ignores",
-                 "--python-version", "3.11", "--no-error-summary", "--show-error-codes",
-                 *extra, *paths])
+    return _run(
+        [
+            sys.executable,
+            "-m",
+            "mypy",
+            "--strict",
+            "--warn-unused-ignores",
+            "--python-version",
+            "3.11",
+            "--no-error-summary",
+            "--show-error-codes",
+            *extra,
+            *paths,
+        ]
+    )
 
 
 def test_typed_usage_type_checks_and_runs(tmp_path):

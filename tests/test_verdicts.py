@@ -29,12 +29,22 @@ def _run(name: str, **kw):
 
 # -- synthetic runs: exact boundaries -----------------------------------------------
 
+
 def _result(z1, v=None, limits=None, expanded=None, dt=0.01):
     z1 = np.asarray(z1, dtype=float)
     t = np.arange(z1.size) * dt
     v = np.zeros_like(z1) if v is None else np.asarray(v, dtype=float)
-    r = famcc.SimResult(t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None], v=v,
-                        u=v if limits is None else np.clip(v, *limits), dt=dt, u_limits=limits)
+    r = famcc.SimResult(
+        t=t,
+        y=z1,
+        y_d=0 * t,
+        x=z1[:, None],
+        z=z1[:, None],
+        v=v,
+        u=v if limits is None else np.clip(v, *limits),
+        dt=dt,
+        u_limits=limits,
+    )
     if expanded is not None:
         r.expanded = np.asarray(expanded, dtype=bool)
         r.expansion = np.where(r.expanded, 2.0, 1.0)
@@ -43,10 +53,10 @@ def _result(z1, v=None, limits=None, expanded=None, dt=0.01):
 
 
 def test_settling_held_failed_untested_at_the_bound():
-    z1 = np.where(np.arange(501) * 0.01 < 2.0, 1.0, 0.0)       # settles at 2.00 s
+    z1 = np.where(np.arange(501) * 0.01 < 2.0, 1.0, 0.0)  # settles at 2.00 s
     r = _result(z1)
-    assert verdicts.settling(r, 0.1, 1.0, 1.0).status == "held"      # bound 2.0 s
-    assert verdicts.settling(r, 0.1, 1.0, 0.99).status == "failed"   # bound 1.99 s
+    assert verdicts.settling(r, 0.1, 1.0, 1.0).status == "held"  # bound 2.0 s
+    assert verdicts.settling(r, 0.1, 1.0, 0.99).status == "failed"  # bound 1.99 s
     assert verdicts.settling(r, 0.1, 1.0, 4.01).status == "untested"  # bound 5.01 s > 5 s
     never = _result(np.ones(501))
     v = verdicts.settling(never, 0.1, 1.0, 1.0)
@@ -56,16 +66,16 @@ def test_settling_held_failed_untested_at_the_bound():
 def test_settling_bound_counts_saturation_that_ends_after_the_preset_time():
     t = np.arange(501) * 0.01
     z1 = np.where(t < 2.5, 1.0, 0.0)
-    v = np.where((t >= 1.5) & (t < 2.0), 10.0, 0.0)               # saturated until T_e = 2 s
+    v = np.where((t >= 1.5) & (t < 2.0), 10.0, 0.0)  # saturated until T_e = 2 s
     r = _result(z1, v=v, limits=(-1.0, 1.0))
-    assert verdicts.settling(r, 0.1, 1.0, 0.5).status == "held"      # bound max(2, 1) + 0.5
+    assert verdicts.settling(r, 0.1, 1.0, 0.5).status == "held"  # bound max(2, 1) + 0.5
     assert verdicts.settling(r, 0.1, 1.0, 0.4).status == "failed"
 
 
 def test_unsaturated_and_nominal_ignore_the_startup_only():
     n = 101
     v = np.zeros(n)
-    v[:10] = 50.0                                                   # 0-0.09 s: start-up
+    v[:10] = 50.0  # 0-0.09 s: start-up
     exp = np.zeros(n, dtype=bool)
     exp[:10] = True
     r = _result(np.zeros(n), v=v, limits=(-1.0, 1.0), expanded=exp)
@@ -80,7 +90,7 @@ def test_unsaturated_and_nominal_ignore_the_startup_only():
 
 
 def test_recovery_windows_due_and_not_due():
-    t = np.arange(1001) * 0.01                                      # 10 s
+    t = np.arange(1001) * 0.01  # 10 s
     v = np.where(((t >= 1.0) & (t < 2.0)) | ((t >= 3.0) & (t < 3.5)), 9.0, 0.0)
     z1 = np.where(t < 2.2, 1.0, 0.0)
     r = _result(z1, v=v, limits=(-1.0, 1.0))
@@ -119,26 +129,37 @@ def test_a_run_saturated_to_the_end_has_no_due_window():
 def test_verdict_rejects_unknown_status_and_counts():
     with pytest.raises(ValueError, match="status"):
         verdicts.Verdict("x", "claim", "ok", "")
-    found = [verdicts.Verdict("a", "", "held", ""), verdicts.Verdict("b", "", "failed", ""),
-             verdicts.Verdict("c", "", "untested", "")]
-    assert verdicts.count(found) == {"held": 1, "failed": 1, "untested": 1, "tested": 2,
-                                     "total": 3}
+    found = [
+        verdicts.Verdict("a", "", "held", ""),
+        verdicts.Verdict("b", "", "failed", ""),
+        verdicts.Verdict("c", "", "untested", ""),
+    ]
+    assert verdicts.count(found) == {"held": 1, "failed": 1, "untested": 1, "tested": 2, "total": 3}
 
 
 # -- the paper's scenarios with one thing made bad: each claim fails --------------
 
+
 def test_issue_example_euler_100hz_saturated_run_fails_its_check():
-    sc, res, v = _run("finite-time-saturated", dt=1e-2, substeps=40,
-                      differentiator=H(0.01, [4.0, 4.0], discretization="euler"))
+    sc, res, v = _run(
+        "finite-time-saturated",
+        dt=1e-2,
+        substeps=40,
+        differentiator=H(0.01, [4.0, 4.0], discretization="euler"),
+    )
     assert res.saturated_fraction > 0.95 and res.settling_time(0.1) is None
     assert v["settles"].failed
     assert sc.check(res) != []
-    assert v["recovery"].status == "untested"          # saturation never ended: not "held"
+    assert v["recovery"].status == "untested"  # saturation never ended: not "held"
 
 
 def test_settling_fails_with_an_unstable_euler_differentiator_at_100hz():
-    _, _res, v = _run("finite-time", dt=1e-2, substeps=40,
-                     differentiator=H(0.01, [4.0, 4.0], discretization="euler"))
+    _, _res, v = _run(
+        "finite-time",
+        dt=1e-2,
+        substeps=40,
+        differentiator=H(0.01, [4.0, 4.0], discretization="euler"),
+    )
     assert v["settling"].failed
     assert v["nominal"].failed
 
@@ -149,8 +170,12 @@ def test_settling_fails_with_a_differentiator_too_slow_for_the_plant():
 
 
 def test_nominal_fails_although_settling_holds_tustin_100hz():
-    _, res, v = _run("finite-time", dt=1e-2, substeps=40,
-                     differentiator=H(0.01, [4.0, 4.0], discretization="tustin"))
+    _, res, v = _run(
+        "finite-time",
+        dt=1e-2,
+        substeps=40,
+        differentiator=H(0.01, [4.0, 4.0], discretization="tustin"),
+    )
     assert v["settling"].status == "held"
     assert v["nominal"].failed
     # The evidence: |xi~| stayed below 1 (by construction), the nominal xi did not.
@@ -159,8 +184,12 @@ def test_nominal_fails_although_settling_holds_tustin_100hz():
 
 
 def test_unsaturated_fails_when_rfc_sits_on_its_limits_at_100hz():
-    _, _, v = _run("rfc", dt=1e-2, substeps=40,
-                   differentiator=H(0.01, [4.0, 6.0, 4.0], discretization="tustin"))
+    _, _, v = _run(
+        "rfc",
+        dt=1e-2,
+        substeps=40,
+        differentiator=H(0.01, [4.0, 6.0, 4.0], discretization="tustin"),
+    )
     assert v["unsaturated"].failed
 
 
@@ -183,18 +212,18 @@ def test_nominal_again_fails_when_bounds_stay_expanded_after_saturation():
 
 def test_bound_beyond_a_short_horizon_is_untested_not_held():
     sc, res, v = _run("finite-time", t_end=2.0)
-    assert res.settling_time(0.1) is not None         # it did settle ...
-    assert v["settling"].status == "untested"         # ... but the claim is about t >= 3 s
+    assert res.settling_time(0.1) is not None  # it did settle ...
+    assert v["settling"].status == "untested"  # ... but the claim is about t >= 3 s
     assert sc.check(res) == []
 
 
 def test_saturated_scenario_runs_until_a_recovery_claim_falls_due():
     sc = scenarios.paper("variable-exponent-saturated", "code")
     res = sc.run()
-    assert float(res.t[-1]) > sc.t_end                 # extended past the paper's 10 s
+    assert float(res.t[-1]) > sc.t_end  # extended past the paper's 10 s
     v = _by_name(sc.verdicts(res))
     assert v["recovery"].status == "held" and "due windows hold" in v["recovery"].detail
-    assert sc.run(t_end=10.0).t[-1] == pytest.approx(10.0)   # an explicit horizon is kept
+    assert sc.run(t_end=10.0).t[-1] == pytest.approx(10.0)  # an explicit horizon is kept
 
 
 def test_paper_numbers_rfc_saturated_fail_settling_as_a_known_failure():
@@ -206,6 +235,7 @@ def test_paper_numbers_rfc_saturated_fail_settling_as_a_known_failure():
 
 
 # -- SimResult's new per-sample records and metrics -------------------------------
+
 
 def test_simresult_records_nominal_xi_expansion_and_saturation():
     sc = scenarios.paper("finite-time-saturated")

@@ -33,7 +33,7 @@ from famcc._core import (
     skewed,
 )
 from famcc._core import manifold_values as manifold
-from famcc.simulate import SimResult, simulate
+from famcc.simulation import SimResult, Sine, simulate
 
 __all__ = [
     "MAX_ORDER",
@@ -48,6 +48,7 @@ __all__ = [
     "MoulayDiscontinuous",
     "Nonsingular",
     "SimResult",
+    "Sine",
     "Skewed",
     "Smooth",
     "StepError",
@@ -64,10 +65,10 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> object:
     # Heavier submodules load on first use: famcc.plot, famcc.interop.
     import importlib
 
-    if name in {"plot", "interop", "reference", "cli"}:
+    if name in {"plot", "interop", "cli"}:
         return importlib.import_module(f"famcc.{name}")
     raise AttributeError(f"module 'famcc' has no attribute {name!r}")

@@ -47,53 +47,96 @@ def _parser() -> argparse.ArgumentParser:
 
     names = scenarios.names()
     p = argparse.ArgumentParser(
-        prog="famcc", description="famcc: fully actuated manifold constraint control.")
+        prog="famcc", description="famcc: fully actuated manifold constraint control."
+    )
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
 
     def common(sp: argparse.ArgumentParser) -> None:
-        sp.add_argument("--out", default="famcc-out", type=Path,
-                        help="output directory (default: ./famcc-out)")
-        sp.add_argument("--variant", choices=scenarios.VARIANTS, default="code",
-                        help="scenario numbers: the authors' code (default) or the printed "
-                             "paper (docs/design.md §6)")
-        sp.add_argument("--scenario", dest="scenarios", nargs="+", action="extend",
-                        choices=names, metavar="NAME",
-                        help=f"scenario(s) to run (default: all): {', '.join(names)}")
-        sp.add_argument("--t-end", type=_positive, default=None,
-                        help="horizon in s (default: the scenario's, 10 s)")
+        sp.add_argument(
+            "--out", default="famcc-out", type=Path, help="output directory (default: ./famcc-out)"
+        )
+        sp.add_argument(
+            "--variant",
+            choices=scenarios.VARIANTS,
+            default="code",
+            help="scenario numbers: the authors' code (default) or the printed "
+            "paper (docs/design.md §6)",
+        )
+        sp.add_argument(
+            "--scenario",
+            dest="scenarios",
+            nargs="+",
+            action="extend",
+            choices=names,
+            metavar="NAME",
+            help=f"scenario(s) to run (default: all): {', '.join(names)}",
+        )
+        sp.add_argument(
+            "--t-end",
+            type=_positive,
+            default=None,
+            help="horizon in s (default: the scenario's, 10 s)",
+        )
         sp.add_argument("--quiet", action="store_true", help="no progress output")
 
     def sweep_opts(sp: argparse.ArgumentParser) -> None:
-        sp.add_argument("--rates", type=_positive, nargs="+", default=None, metavar="HZ",
-                        help="sample rates of the sweep in Hz (default: "
-                             f"{' '.join(str(r) for r in sw.RATES_HZ)})")
-        sp.add_argument("--discretization", dest="discretizations", nargs="+",
-                        choices=sw.DISCRETIZATIONS, default=None,
-                        help="differentiator discretizations (default: all three)")
-        sp.add_argument("--jobs", type=int, default=None,
-                        help="worker processes for the sweep (default: CPU count)")
-        sp.add_argument("--limit-factor", type=_positive, default=sw.LIMIT_FACTOR,
-                        help="estimate limits = this x max(|z_i(0)|, 1) "
-                             f"(default: {sw.LIMIT_FACTOR:g})")
+        sp.add_argument(
+            "--rates",
+            type=_positive,
+            nargs="+",
+            default=None,
+            metavar="HZ",
+            help="sample rates of the sweep in Hz (default: "
+            f"{' '.join(str(r) for r in sw.RATES_HZ)})",
+        )
+        sp.add_argument(
+            "--discretization",
+            dest="discretizations",
+            nargs="+",
+            choices=sw.DISCRETIZATIONS,
+            default=None,
+            help="differentiator discretizations (default: all three)",
+        )
+        sp.add_argument(
+            "--jobs",
+            type=int,
+            default=None,
+            help="worker processes for the sweep (default: CPU count)",
+        )
+        sp.add_argument(
+            "--limit-factor",
+            type=_positive,
+            default=sw.LIMIT_FACTOR,
+            help=f"estimate limits = this x max(|z_i(0)|, 1) (default: {sw.LIMIT_FACTOR:g})",
+        )
 
-    rp = sub.add_parser("reproduce", help="run the paper's simulations; figures and report",
-                        description="Run the paper's six scenarios, write one PNG per "
-                                    "scenario, report.md and summary.json. Exit status 1 when "
-                                    "a guarantee is violated.")
+    rp = sub.add_parser(
+        "reproduce",
+        help="run the paper's simulations; figures and report",
+        description="Run the paper's six scenarios, write one PNG per "
+        "scenario, report.md and summary.json. Exit status 1 when "
+        "a guarantee is violated.",
+    )
     common(rp)
-    rp.add_argument("--dt", type=_positive, default=1e-3,
-                    help="controller sample period in s (default: 0.001)")
-    rp.add_argument("--no-figures", action="store_true",
-                    help="skip the PNGs (numbers only)")
-    rp.add_argument("--sweep-dt", action="store_true",
-                    help="also run the sample-rate sweep (minutes; writes sweep.md)")
+    rp.add_argument(
+        "--dt", type=_positive, default=1e-3, help="controller sample period in s (default: 0.001)"
+    )
+    rp.add_argument("--no-figures", action="store_true", help="skip the PNGs (numbers only)")
+    rp.add_argument(
+        "--sweep-dt",
+        action="store_true",
+        help="also run the sample-rate sweep (minutes; writes sweep.md)",
+    )
     sweep_opts(rp)
 
-    sp = sub.add_parser("sweep", help="settling time and max |xi~| against the sample rate",
-                        description="Sweep the sample rate (50 Hz - 10 kHz) for the three "
-                                    "differentiator discretizations, with and without "
-                                    "estimate limits; writes sweep.md, sweep.json, sweep.png.")
+    sp = sub.add_parser(
+        "sweep",
+        help="settling time and max |xi~| against the sample rate",
+        description="Sweep the sample rate (50 Hz - 10 kHz) for the three "
+        "differentiator discretizations, with and without "
+        "estimate limits; writes sweep.md, sweep.json, sweep.png.",
+    )
     common(sp)
     sweep_opts(sp)
     return p
@@ -109,15 +152,33 @@ def _run_sweep(args: argparse.Namespace) -> None:
     from famcc import scenarios
 
     n = len(names or scenarios.names()) * len(rates) * len(discs) * 2
-    bar = None if args.quiet else report.Progress(
-        n, f"famcc sweep: {n} runs ({len(rates)} rates x {len(discs)} discretizations x "
-           f"2 limit settings), variant {args.variant!r} -> {args.out}")
+    bar = (
+        None
+        if args.quiet
+        else report.Progress(
+            n,
+            f"famcc sweep: {n} runs ({len(rates)} rates x {len(discs)} discretizations x "
+            f"2 limit settings), variant {args.variant!r} -> {args.out}",
+        )
+    )
     t0 = time.perf_counter()
-    records = sw.sweep(names, variant=args.variant, rates=rates, discretizations=discs,
-                       t_end=args.t_end, jobs=args.jobs, progress=bar,
-                       limit_factor=args.limit_factor)
-    meta = {"variant": args.variant, "t_end": args.t_end, "limit_factor": args.limit_factor,
-            "runtime_s": time.perf_counter() - t0, "jobs": args.jobs or _cpus()}
+    records = sw.sweep(
+        names,
+        variant=args.variant,
+        rates=rates,
+        discretizations=discs,
+        t_end=args.t_end,
+        jobs=args.jobs,
+        progress=bar,
+        limit_factor=args.limit_factor,
+    )
+    meta = {
+        "variant": args.variant,
+        "t_end": args.t_end,
+        "limit_factor": args.limit_factor,
+        "runtime_s": time.perf_counter() - t0,
+        "jobs": args.jobs or _cpus(),
+    }
     md = sw.write_sweep_report(records, args.out, meta)
     if not args.quiet:
         print(f"sweep: {md} ({meta['runtime_s']:.0f} s)", file=sys.stderr)
@@ -141,16 +202,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     t0 = time.perf_counter()
     try:
         records = report.reproduce(
-            args.out, names=args.scenarios, variant=args.variant, dt=args.dt,
-            t_end=args.t_end, figures=not args.no_figures,
-            progress=None if args.quiet else "stderr")
+            args.out,
+            names=args.scenarios,
+            variant=args.variant,
+            dt=args.dt,
+            t_end=args.t_end,
+            figures=not args.no_figures,
+            progress=None if args.quiet else "stderr",
+        )
     except ValueError as exc:
         print(f"famcc reproduce: error: {exc}", file=sys.stderr)
         return 2
     bad = [r for r in records if r["violations"]]
     if not args.quiet:
-        print(f"report: {Path(args.out) / 'report.md'} "
-              f"({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
+        print(
+            f"report: {Path(args.out) / 'report.md'} ({time.perf_counter() - t0:.1f} s)",
+            file=sys.stderr,
+        )
         print(report.headline(records).replace("**", ""), file=sys.stderr)
         for r in bad:
             for line in r["violations"]:

@@ -37,9 +37,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
+
+from famcc._jet import Jet, as_scalar, cos, sin
 
 __all__ = [
     "VARIANTS",
@@ -56,222 +58,6 @@ ScalarFn = Callable[[Any, Any], Any]
 
 
 # ---------------------------------------------------------------------------
-# Jets: truncated Taylor series in time (exact forward-mode differentiation)
-# ---------------------------------------------------------------------------
-
-
-class _Jet:
-    """Truncated Taylor series ``a(t0 + h) = sum_k c[k] h^k`` (normalised coefficients).
-
-    ``c[k] = a^(k)(t0) / k!``. Arithmetic follows the standard recurrences of
-    Griewank & Walther, "Evaluating Derivatives", ch. 13. Jets do not define
-    ``__float__`` on purpose: code that silently converts to float (``math.sin``)
-    fails loudly instead of dropping derivatives. NumPy ufuncs (``np.sin``,
-    ``np.exp``, ...) work through ``__array_ufunc__``.
-
-    Examples
-    --------
-    >>> t = _Jet([0.5, 1.0, 0.0, 0.0])        # the time variable at t0 = 0.5
-    >>> y = np.sin(t * t)
-    >>> [round(v, 12) for v in y.derivatives()][:2] == [
-    ...     round(math.sin(0.25), 12), round(2 * 0.5 * math.cos(0.25), 12)]
-    True
-    """
-
-    __slots__ = ("c",)
-
-    def __init__(self, coefficients: Sequence[float]) -> None:
-        self.c = [float(v) for v in coefficients]
-
-    # -- helpers -----------------------------------------------------------
-    @property
-    def degree(self) -> int:
-        return len(self.c) - 1
-
-    def derivatives(self) -> list[float]:
-        """Return ``[a, a', a'', ...]`` (coefficients times ``k!``)."""
-        return [v * math.factorial(k) for k, v in enumerate(self.c)]
-
-    def _lift(self, other: Any) -> _Jet:
-        if isinstance(other, _Jet):
-            return other
-        if isinstance(other, (int, float, np.integer, np.floating)):
-            return _Jet([float(other)] + [0.0] * self.degree)
-        raise TypeError(f"cannot combine a jet with {type(other).__name__}")
-
-    def _binary_degree(self, other: _Jet) -> int:
-        return min(self.degree, other.degree)
-
-    def __repr__(self) -> str:
-        return f"_Jet({self.c!r})"
-
-    # -- arithmetic ----------------------------------------------------------
-    def __add__(self, other: Any) -> _Jet:
-        if isinstance(other, _Jet):
-            d = self._binary_degree(other)
-            return _Jet([self.c[k] + other.c[k] for k in range(d + 1)])
-        o = self._lift(other)
-        return _Jet([self.c[0] + o.c[0]] + self.c[1:])
-
-    __radd__ = __add__
-
-    def __neg__(self) -> _Jet:
-        return _Jet([-v for v in self.c])
-
-    def __pos__(self) -> _Jet:
-        return self
-
-    def __sub__(self, other: Any) -> _Jet:
-        return self + (-self._lift(other))
-
-    def __rsub__(self, other: Any) -> _Jet:
-        return self._lift(other) + (-self)
-
-    def __mul__(self, other: Any) -> _Jet:
-        if not isinstance(other, _Jet):
-            o = float(self._lift(other).c[0])
-            return _Jet([v * o for v in self.c])
-        d = self._binary_degree(other)
-        a, b = self.c, other.c
-        return _Jet([sum(a[i] * b[k - i] for i in range(k + 1)) for k in range(d + 1)])
-
-    __rmul__ = __mul__
-
-    def __truediv__(self, other: Any) -> _Jet:
-        o = self._lift(other)
-        d = self._binary_degree(o)
-        a, b = self.c, o.c
-        if b[0] == 0.0:
-            raise ZeroDivisionError("jet division by a jet whose value is zero")
-        q: list[float] = []
-        for k in range(d + 1):
-            acc = a[k] - sum(b[j] * q[k - j] for j in range(1, k + 1))
-            q.append(acc / b[0])
-        return _Jet(q)
-
-    def __rtruediv__(self, other: Any) -> _Jet:
-        return self._lift(other) / self
-
-    def __pow__(self, exponent: Any) -> _Jet:
-        if isinstance(exponent, _Jet):
-            return (exponent * self.log()).exp()
-        r = float(exponent)
-        if r.is_integer() and 0 <= r <= 16:
-            result = _Jet([1.0] + [0.0] * self.degree)
-            for _ in range(int(r)):
-                result = result * self
-            return result
-        a = self.c
-        if a[0] == 0.0:
-            raise ZeroDivisionError("jet power with a non-integer exponent at value zero")
-        p = [a[0] ** r]
-        for k in range(1, len(a)):
-            acc = sum(((r + 1.0) * j - k) * a[j] * p[k - j] for j in range(1, k + 1))
-            p.append(acc / (k * a[0]))
-        return _Jet(p)
-
-    def __rpow__(self, base: Any) -> _Jet:
-        return self._lift(base) ** self
-
-    # -- elementary functions ----------------------------------------------
-    def _integrate(self, f0: float, w: _Jet) -> _Jet:
-        """Jet of ``f`` with ``f(t0) = f0`` and ``f' = a' * w``."""
-        a, out = self.c, [f0]
-        for k in range(1, len(a)):
-            out.append(sum(j * a[j] * w.c[k - j] for j in range(1, k + 1)) / k)
-        return _Jet(out)
-
-    def sin_cos(self) -> tuple[_Jet, _Jet]:
-        a = self.c
-        s, c = [math.sin(a[0])], [math.cos(a[0])]
-        for k in range(1, len(a)):
-            s.append(sum(j * a[j] * c[k - j] for j in range(1, k + 1)) / k)
-            c.append(-sum(j * a[j] * s[k - j] for j in range(1, k + 1)) / k)
-        return _Jet(s), _Jet(c)
-
-    def sin(self) -> _Jet:
-        return self.sin_cos()[0]
-
-    def cos(self) -> _Jet:
-        return self.sin_cos()[1]
-
-    def exp(self) -> _Jet:
-        a, e = self.c, [math.exp(self.c[0])]
-        for k in range(1, len(a)):
-            e.append(sum(j * a[j] * e[k - j] for j in range(1, k + 1)) / k)
-        return _Jet(e)
-
-    def log(self) -> _Jet:
-        a = self.c
-        if a[0] <= 0.0:
-            raise ValueError("jet log of a non-positive value")
-        out = [math.log(a[0])]
-        for k in range(1, len(a)):
-            acc = a[k] - sum(j * out[j] * a[k - j] for j in range(1, k)) / k
-            out.append(acc / a[0])
-        return _Jet(out)
-
-    def sqrt(self) -> _Jet:
-        return self**0.5
-
-    def tanh(self) -> _Jet:
-        a = self.c
-        t = [math.tanh(a[0])]
-        w = [1.0 - t[0] * t[0]]  # w = 1 - tanh^2, built alongside
-        for k in range(1, len(a)):
-            t.append(sum(j * a[j] * w[k - j] for j in range(1, k + 1)) / k)
-            w.append(-sum(t[i] * t[k - i] for i in range(k + 1)))
-        return _Jet(t)
-
-    def arctan(self) -> _Jet:
-        return self._integrate(math.atan(self.c[0]), 1.0 / (1.0 + self * self))
-
-    # -- NumPy interoperability --------------------------------------------
-    _UFUNCS: ClassVar[dict[str, Callable[..., Any]]] = {
-        "add": lambda a, b: a + b,
-        "subtract": lambda a, b: a - b,
-        "multiply": lambda a, b: a * b,
-        "true_divide": lambda a, b: a / b,
-        "divide": lambda a, b: a / b,
-        "power": lambda a, b: a**b,
-        "negative": lambda a: -a,
-        "positive": lambda a: a,
-        "square": lambda a: a * a,
-        "sin": lambda a: a.sin(),
-        "cos": lambda a: a.cos(),
-        "exp": lambda a: a.exp(),
-        "log": lambda a: a.log(),
-        "sqrt": lambda a: a.sqrt(),
-        "tanh": lambda a: a.tanh(),
-        "arctan": lambda a: a.arctan(),
-    }
-
-    def __array_ufunc__(self, ufunc: Any, method: str, *inputs: Any, **kwargs: Any) -> Any:
-        fn = self._UFUNCS.get(ufunc.__name__)
-        if method != "__call__" or fn is None or kwargs:
-            return NotImplemented
-        args = [self._lift(v) if not isinstance(v, _Jet) else v for v in inputs]
-        return fn(*args)
-
-
-def _sin(a: Any) -> Any:
-    return a.sin() if isinstance(a, _Jet) else math.sin(a)
-
-
-def _cos(a: Any) -> Any:
-    return a.cos() if isinstance(a, _Jet) else math.cos(a)
-
-
-def _as_scalar(value: Any) -> Any:
-    """Unwrap 0-d arrays and NumPy scalars; keep jets."""
-    if isinstance(value, _Jet):
-        return value
-    if isinstance(value, np.ndarray) and value.shape == ():
-        return _as_scalar(value.item())
-    return float(value)
-
-
-# ---------------------------------------------------------------------------
 # Plants
 # ---------------------------------------------------------------------------
 
@@ -282,7 +68,7 @@ class Plant:
     Subclasses implement :meth:`rhs`; :meth:`output_derivatives` and
     :meth:`gain_and_drift` raise :class:`NotImplementedError` unless overridden.
     A plant may also offer ``rhs_fast(t, x, u)``, the same vector field on plain
-    sequences of floats returning a tuple; :func:`famcc.simulate.simulate` then
+    sequences of floats returning a tuple; :func:`famcc.simulate` then
     integrates without NumPy's per-call overhead on tiny arrays (about 3x faster).
 
     Parameters
@@ -413,7 +199,7 @@ class StrictFeedback(Plant):
         out = np.empty(n)
         for i in range(n):
             nxt = x[i + 1] if i + 1 < n else u
-            out[i] = _as_scalar(self.g[i](x, t)) * nxt + _as_scalar(self.f[i](x, t))
+            out[i] = as_scalar(self.g[i](x, t)) * nxt + as_scalar(self.f[i](x, t))
         return out
 
     # -- exact derivatives via the Taylor method --------------------------------
@@ -427,17 +213,17 @@ class StrictFeedback(Plant):
         n = self.order
         coeffs = [[float(v)] for v in x]
         for k in range(degree):
-            tj = _Jet([float(t), 1.0] + [0.0] * (k - 1)) if k >= 1 else _Jet([float(t)])
+            tj = Jet([float(t), 1.0] + [0.0] * (k - 1)) if k >= 1 else Jet([float(t)])
             xs = np.empty(n, dtype=object)
             for i in range(n):
-                xs[i] = _Jet(coeffs[i][: k + 1])
+                xs[i] = Jet(coeffs[i][: k + 1])
             try:
                 for i in range(n):
                     nxt = xs[i + 1] if i + 1 < n else u
-                    gi = _as_scalar(self.g[i](xs, tj))
-                    fi = _as_scalar(self.f[i](xs, tj))
+                    gi = as_scalar(self.g[i](xs, tj))
+                    fi = as_scalar(self.f[i](xs, tj))
                     rate = gi * nxt + fi
-                    ck = rate.c[k] if isinstance(rate, _Jet) else (float(rate) if k == 0 else 0.0)
+                    ck = rate.c[k] if isinstance(rate, Jet) else (float(rate) if k == 0 else 0.0)
                     coeffs[i].append(ck / (k + 1))
             except TypeError as exc:
                 raise NotImplementedError(
@@ -455,7 +241,7 @@ class StrictFeedback(Plant):
         if n == 2:
             return np.array([
                 x[0],
-                _as_scalar(self.g[0](x, t)) * x[1] + _as_scalar(self.f[0](x, t)),
+                as_scalar(self.g[0](x, t)) * x[1] + as_scalar(self.f[0](x, t)),
             ])
         c1 = self._taylor(t, x, 0.0, n - 1)[0]
         return np.array([c1[k] * math.factorial(k) for k in range(n)])
@@ -465,9 +251,9 @@ class StrictFeedback(Plant):
         x = np.asarray(x, dtype=np.float64)
         gain = 1.0
         for gi in self.g:
-            gain *= _as_scalar(gi(x, t))
+            gain *= as_scalar(gi(x, t))
         if n == 1:
-            return float(gain), float(_as_scalar(self.f[0](x, t)))
+            return float(gain), float(as_scalar(self.f[0](x, t)))
         # y^(n) is affine in u; with u = 0 it is F_a.
         c1 = self._taylor(t, x, 0.0, n)[0]
         return float(gain), float(c1[n] * math.factorial(n))
@@ -487,16 +273,16 @@ class _SecondOrder(StrictFeedback):
         amp = self._amp
 
         def g1(x: Any, t: Any) -> Any:
-            return 1.0 + 0.1 * _cos(x[0]) + 0.1 * _sin(t)
+            return 1.0 + 0.1 * cos(x[0]) + 0.1 * sin(t)
 
         def f1(x: Any, t: Any) -> Any:
-            return -x[0] + _sin(t)
+            return -x[0] + sin(t)
 
         def g2(x: Any, t: Any) -> Any:
-            return 2.0 + 0.2 * _sin(x[0] * x[1]) + 0.1 * _cos(t)
+            return 2.0 + 0.2 * sin(x[0] * x[1]) + 0.1 * cos(t)
 
         def f2(x: Any, t: Any) -> Any:
-            return -(x[0] * x[0] - 1.0) * x[1] + amp * _sin(t) + amp * _cos(2.0 * t)
+            return -(x[0] * x[0] - 1.0) * x[1] + amp * sin(t) + amp * cos(2.0 * t)
 
         super().__init__([g1, g2], [f1, f2], [-1.0, 0.5], name="second-order",
                          variant=variant)
@@ -505,7 +291,7 @@ class _SecondOrder(StrictFeedback):
         return np.array(self.rhs_fast(t, (float(x[0]), float(x[1])), u))
 
     def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float]:
-        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate.simulate`)."""
+        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`)."""
         x1, x2 = x
         st = math.sin(t)
         g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * st
@@ -535,22 +321,22 @@ class _ThirdOrder(StrictFeedback):
 
     def __init__(self, variant: str) -> None:
         def g1(x: Any, t: Any) -> Any:
-            return 1.0 + 0.1 * _sin(x[0]) + 0.1 * _cos(t)
+            return 1.0 + 0.1 * sin(x[0]) + 0.1 * cos(t)
 
         def f1(x: Any, t: Any) -> Any:
-            return -x[0] + _cos(t)
+            return -x[0] + cos(t)
 
         def g2(x: Any, t: Any) -> Any:
-            return 1.0 + 0.1 * _cos(x[0] * x[1]) + 0.1 * _sin(t)
+            return 1.0 + 0.1 * cos(x[0] * x[1]) + 0.1 * sin(t)
 
         def f2(x: Any, t: Any) -> Any:
-            return -(x[0] * x[0] - 1.0) * x[1] + _sin(t)
+            return -(x[0] * x[0] - 1.0) * x[1] + sin(t)
 
         def g3(x: Any, t: Any) -> Any:
-            return 2.0 + 0.2 * _sin(x[0] * x[1] * x[2]) + 0.1 * _cos(t)
+            return 2.0 + 0.2 * sin(x[0] * x[1] * x[2]) + 0.1 * cos(t)
 
         def f3(x: Any, t: Any) -> Any:
-            return -(x[0] * x[0] + x[1]) * x[2] + 10.0 * _sin(t) + 10.0 * _cos(2.0 * t)
+            return -(x[0] * x[0] + x[1]) * x[2] + 10.0 * sin(t) + 10.0 * cos(2.0 * t)
 
         x0 = [1.0, -0.2, 0.4] if variant == "paper" else [1.0, 0.5, 4.0]
         super().__init__([g1, g2, g3], [f1, f2, f3], x0, name="third-order",
@@ -575,7 +361,7 @@ class _ThirdOrder(StrictFeedback):
         return np.array(self.rhs_fast(t, (float(x[0]), float(x[1]), float(x[2])), u))
 
     def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float, float]:
-        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate.simulate`)."""
+        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`)."""
         x1, x2, x3 = x
         st, ct = math.sin(t), math.cos(t)
         return (

@@ -52,6 +52,7 @@ _DPI = 100
 # quantities
 # ---------------------------------------------------------------------------
 
+
 def _active_axis(scenario: Any) -> int:
     """0 for the lateral constraint (x direction), 1 otherwise (y direction)."""
     return 0 if scenario.controller_kwargs.get("constraint") == "lateral" else 1
@@ -90,7 +91,7 @@ def _z_unit(i: int) -> str:
     return ("[y]", "[y/s]", "[y/s$^2$]", "[y/s$^3$]")[min(i, 3)]
 
 
-def _law(scenario: Any, stage: int):
+def _law(scenario: Any, stage: int) -> Any:
     """The callable ``h_m`` of a stage (0-based), or None."""
     import famcc
 
@@ -108,6 +109,7 @@ def _law(scenario: Any, stage: int):
 # helpers
 # ---------------------------------------------------------------------------
 
+
 def _shade(ax: Any, episodes: Sequence[tuple[float, float]], label: bool = True) -> None:
     first = True
     for a, b in episodes:
@@ -115,8 +117,9 @@ def _shade(ax: Any, episodes: Sequence[tuple[float, float]], label: bool = True)
         first = False
 
 
-def _limits(values: Sequence[np.ndarray], pad: float = 0.08, floor: float = 1e-9
-            ) -> tuple[float, float]:
+def _limits(
+    values: Sequence[np.ndarray], pad: float = 0.08, floor: float = 1e-9
+) -> tuple[float, float]:
     finite = [np.asarray(v, dtype=float)[np.isfinite(v)] for v in values]
     finite = [v for v in finite if v.size]
     if not finite:
@@ -130,9 +133,17 @@ def _limits(values: Sequence[np.ndarray], pad: float = 0.08, floor: float = 1e-9
 def _note(ax: Any, text: str, loc: str = "lower right") -> None:
     x, ha = (0.98, "right") if "right" in loc else (0.02, "left")
     y, va = (0.03, "bottom") if "lower" in loc else (0.97, "top")
-    ax.text(x, y, text, transform=ax.transAxes, ha=ha, va=va, fontsize=7.5,
-            color="0.25", bbox={"boxstyle": "round,pad=0.25", "fc": "white", "ec": "0.7",
-                                "alpha": 0.9})
+    ax.text(
+        x,
+        y,
+        text,
+        transform=ax.transAxes,
+        ha=ha,
+        va=va,
+        fontsize=7.5,
+        color="0.25",
+        bbox={"boxstyle": "round,pad=0.25", "fc": "white", "ec": "0.7", "alpha": 0.9},
+    )
 
 
 def _fmt(v: float) -> str:
@@ -150,6 +161,7 @@ def _after(t: np.ndarray, t0: float) -> np.ndarray:
 # panels
 # ---------------------------------------------------------------------------
 
+
 def _panel_z(ax: Any, sc: Any, r: Any) -> None:
     t = r.t
     n = r.z.shape[1]
@@ -159,8 +171,9 @@ def _panel_z(ax: Any, sc: Any, r: Any) -> None:
         c = _ZCOLORS[i % len(_ZCOLORS)]
         ax.plot(t, r.z[:, i], color=c, lw=1.4, label=rf"$z_{i + 1}$")
         if r.z_hat is not None:
-            ax.plot(t, r.z_hat[:, i], color=c, lw=1.0, ls="--", alpha=0.9,
-                    label=rf"$\hat z_{i + 1}$")
+            ax.plot(
+                t, r.z_hat[:, i], color=c, lw=1.0, ls="--", alpha=0.9, label=rf"$\hat z_{i + 1}$"
+            )
             shown.append(r.z_hat[keep, i])
         shown.append(r.z[:, i])
     lo, hi = _limits(shown)
@@ -173,21 +186,22 @@ def _panel_z(ax: Any, sc: Any, r: Any) -> None:
             if not lo <= zh[k] <= hi:
                 clipped.append(rf"$\hat z_{i + 1}$ peaks at {_fmt(zh[k])} (t = {t[k]:.3f} s)")
     legend_low = r.z[0, 0] > 0
-    if clipped:      # make room for the note on the side free of the legend
+    if clipped:  # make room for the note on the side free of the legend
         room = 0.14 * (hi - lo)
         if legend_low:
             ax.set_ylim(lo, hi + room)
         else:
             ax.set_ylim(lo - room, hi)
-        _note(ax, "off scale: " + "; ".join(clipped),
-              "upper right" if legend_low else "lower right")
+        _note(
+            ax, "off scale: " + "; ".join(clipped), "upper right" if legend_low else "lower right"
+        )
     ax.set_title(r"(a) error $z$ (solid) and its estimate $\hat z$ (dashed)")
     ax.set_xlabel("time [s]")
     ax.set_ylabel(" ".join(rf"$z_{i + 1}$ {_z_unit(i)}" for i in range(n)))
     ax.legend(ncol=n, fontsize=8, loc="lower right" if legend_low else "upper right")
 
 
-def _panel_z_zoom(ax: Any, sc: Any, r: Any, episodes: list) -> None:
+def _panel_z_zoom(ax: Any, sc: Any, r: Any, episodes: list[Any]) -> None:
     t = r.t
     eps = sc.eps_z
     mask = _after(t, sc.settle_time)
@@ -216,8 +230,11 @@ def _panel_z_zoom(ax: Any, sc: Any, r: Any, episodes: list) -> None:
     ax.set_ylim(-half, half)
     early = np.abs(r.z[mask, 0]) > half
     if early.any():
-        _note(ax, f"|z1| > {half:.2g} off scale until t = {tt[np.flatnonzero(early)[-1]]:.2f} s",
-              "lower right")
+        _note(
+            ax,
+            f"|z1| > {half:.2g} off scale until t = {tt[np.flatnonzero(early)[-1]]:.2f} s",
+            "lower right",
+        )
     ax.set_xlim(tt[0], tt[-1])
     ax.set_title(rf"(b) $z_1$ after $T_s$ = {sc.settle_time:g} s")
     ax.set_xlabel("time [s]")
@@ -225,7 +242,7 @@ def _panel_z_zoom(ax: Any, sc: Any, r: Any, episodes: list) -> None:
     ax.legend(fontsize=8, ncol=2, loc="upper right")
 
 
-def _panel_offset(ax: Any, sc: Any, r: Any, episodes: list, zoom: bool) -> None:
+def _panel_offset(ax: Any, sc: Any, r: Any, episodes: list[Any], zoom: bool) -> None:
     t = r.t
     off, flex, nom = constrained_offset(sc, r)
     mask = _after(t, sc.settle_time) if zoom else np.ones_like(t, dtype=bool)
@@ -245,8 +262,11 @@ def _panel_offset(ax: Any, sc: Any, r: Any, episodes: list, zoom: bool) -> None:
     else:
         peak = float(np.nanmax(np.abs(np.concatenate([off, flex]))))
         ax.set_ylim(-1.12 * peak, 1.12 * peak)
-        what = (r"horizontal offset $s_{fn}$ (LaMC)" if _active_axis(sc) == 0
-                else r"manifold value $s$ (LoMC)")
+        what = (
+            r"horizontal offset $s_{fn}$ (LaMC)"
+            if _active_axis(sc) == 0
+            else r"manifold value $s$ (LoMC)"
+        )
         ax.set_title(f"(c) {what} and its bounds")
     ax.set_xlabel("time [s]")
     unit = "[y]" if _active_axis(sc) == 0 else _z_unit(r.z.shape[1] - 1)
@@ -254,28 +274,49 @@ def _panel_offset(ax: Any, sc: Any, r: Any, episodes: list, zoom: bool) -> None:
     ax.legend(fontsize=8, ncol=2, loc="upper right")
 
 
-def _manifold_curve(ax: Any, law: Any, xs: np.ndarray, shift: float, horizontal: bool,
-                    label: str) -> None:
+def _manifold_curve(
+    ax: Any, law: Any, xs: np.ndarray, shift: float, horizontal: bool, label: str
+) -> None:
     try:
         ys = np.asarray([law(float(x)) for x in xs], dtype=float)
     except (TypeError, ValueError, ArithmeticError):
         return
     ax.plot(xs, ys, color="0.35", lw=1.1, label=label)
     if shift > 0:
-        if horizontal:    # LaMC bounds: the curve shifted left/right by x_U
-            ax.plot(xs - shift, ys, lw=0.9, label=rf"shifted by $\pm${shift:g}",
-                    **{k: v for k, v in _NOMINAL.items() if k != "linewidth"})
-            ax.plot(xs + shift, ys, lw=0.9,
-                    **{k: v for k, v in _NOMINAL.items() if k != "linewidth"})
-        else:             # LoMC bounds: shifted up/down by y_U
-            ax.plot(xs, ys + shift, lw=0.9, label=rf"shifted by $\pm${shift:g}",
-                    **{k: v for k, v in _NOMINAL.items() if k != "linewidth"})
-            ax.plot(xs, ys - shift, lw=0.9,
-                    **{k: v for k, v in _NOMINAL.items() if k != "linewidth"})
+        if horizontal:  # LaMC bounds: the curve shifted left/right by x_U
+            ax.plot(
+                xs - shift,
+                ys,
+                lw=0.9,
+                label=rf"shifted by $\pm${shift:g}",
+                **{k: v for k, v in _NOMINAL.items() if k != "linewidth"},
+            )
+            ax.plot(
+                xs + shift, ys, lw=0.9, **{k: v for k, v in _NOMINAL.items() if k != "linewidth"}
+            )
+        else:  # LoMC bounds: shifted up/down by y_U
+            ax.plot(
+                xs,
+                ys + shift,
+                lw=0.9,
+                label=rf"shifted by $\pm${shift:g}",
+                **{k: v for k, v in _NOMINAL.items() if k != "linewidth"},
+            )
+            ax.plot(
+                xs, ys - shift, lw=0.9, **{k: v for k, v in _NOMINAL.items() if k != "linewidth"}
+            )
 
 
-def _phase(ax: Any, x: np.ndarray, y: np.ndarray, law: Any, shift: float, horizontal: bool,
-           curve_label: str, color: str) -> None:
+def _phase(
+    ax: Any,
+    x: np.ndarray,
+    y: np.ndarray,
+    law: Any,
+    shift: float,
+    horizontal: bool,
+    curve_label: str,
+    color: str,
+) -> None:
     ok = np.isfinite(x) & np.isfinite(y)
     x, y = x[ok], y[ok]
     xlo, xhi = _limits([x], pad=0.12)
@@ -299,8 +340,9 @@ def _panel_phase_z(ax: Any, sc: Any, r: Any) -> None:
     # order 2: the constrained plane itself, with the final nominal bound;
     # order 3: stage 1's manifold z2 = h_m1(z1) (the constraint acts on stage 2)
     shift = float(nom[-1]) if order == 2 else 0.0
-    _phase(ax, r.z[:, 0], r.z[:, 1], _law(sc, 0), shift, lateral,
-           r"$z_2 = h_{m1}(z_1)$", _ZCOLORS[0])
+    _phase(
+        ax, r.z[:, 0], r.z[:, 1], _law(sc, 0), shift, lateral, r"$z_2 = h_{m1}(z_1)$", _ZCOLORS[0]
+    )
     title = r"(e) phase portrait $(z_1, z_2)$"
     if order == 3:
         title += r" = $(s_1, \dot s_1)$"
@@ -313,15 +355,23 @@ def _panel_phase_z(ax: Any, sc: Any, r: Any) -> None:
 def _panel_phase_stage(ax: Any, sc: Any, r: Any) -> None:
     _, _, nom = constrained_offset(sc, r)
     n = r.z.shape[1]
-    _phase(ax, np.asarray(r.s_prev), np.asarray(r.ds_prev), _law(sc, n - 2), float(nom[-1]),
-           False, rf"$\dot s_{n - 1} = h_{{m{n - 1}}}(s_{n - 1})$", "tab:purple")
+    _phase(
+        ax,
+        np.asarray(r.s_prev),
+        np.asarray(r.ds_prev),
+        _law(sc, n - 2),
+        float(nom[-1]),
+        False,
+        rf"$\dot s_{n - 1} = h_{{m{n - 1}}}(s_{n - 1})$",
+        "tab:purple",
+    )
     ax.set_title(rf"(f) constrained stage $(s_{n - 1}, \dot s_{n - 1})$ (from $\hat z$)")
     ax.set_xlabel(rf"$s_{n - 1}$ {_z_unit(n - 2)}")
     ax.set_ylabel(rf"$\dot s_{n - 1}$ {_z_unit(n - 1)}")
     ax.legend(fontsize=8, loc="best")
 
 
-def _panel_u(ax: Any, sc: Any, r: Any, episodes: list, label: str) -> None:
+def _panel_u(ax: Any, sc: Any, r: Any, episodes: list[Any], label: str) -> None:
     t = r.t
     lo_lim, hi_lim = sc.u_limits
     _shade(ax, episodes)
@@ -342,9 +392,11 @@ def _panel_u(ax: Any, sc: Any, r: Any, episodes: list, label: str) -> None:
         notes.append(f"limits [{lo_lim:g}, {hi_lim:g}] outside the view")
     if r.u_min < lo or r.u_max > hi:
         k = int(np.argmax(np.abs(r.u)))
-        notes.append(f"off scale before {STARTUP:g} s: u in [{_fmt(r.u_min)}, {_fmt(r.u_max)}] "
-                     f"(largest |u| at t = {t[k]:.3f} s)")
-    if notes:        # room below the data for the note
+        notes.append(
+            f"off scale before {STARTUP:g} s: u in [{_fmt(r.u_min)}, {_fmt(r.u_max)}] "
+            f"(largest |u| at t = {t[k]:.3f} s)"
+        )
+    if notes:  # room below the data for the note
         lo -= (0.06 + 0.08 * len(notes)) * (hi - lo)
         _note(ax, "\n".join(notes), "lower right")
     ax.set_ylim(lo, hi)
@@ -354,7 +406,7 @@ def _panel_u(ax: Any, sc: Any, r: Any, episodes: list, label: str) -> None:
     ax.legend(fontsize=8, ncol=2, loc="upper right")
 
 
-def _panel_xi(ax: Any, sc: Any, r: Any, episodes: list) -> None:
+def _panel_xi(ax: Any, sc: Any, r: Any, episodes: list[Any]) -> None:
     _shade(ax, episodes)
     ax.plot(r.t, r.xi, color="tab:blue", lw=1.0, label=r"$\tilde\xi$")
     ax.axhline(1.0, color="black", ls="-.", lw=1.0, label=r"$\pm 1$")
@@ -369,6 +421,7 @@ def _panel_xi(ax: Any, sc: Any, r: Any, episodes: list) -> None:
 # ---------------------------------------------------------------------------
 # figures
 # ---------------------------------------------------------------------------
+
 
 def scenario_figure(scenario: Any, result: Any, title: str | None = None) -> Figure:
     """The paper-style figure of one scenario run (needs recorded diagnostics).
@@ -406,9 +459,11 @@ def scenario_figure(scenario: Any, result: Any, title: str | None = None) -> Fig
         ax.set_axisbelow(True)
     if title is None:
         lo, hi = scenario.u_limits
-        title = (f"{scenario.name}: example {scenario.example}, variant \"{scenario.variant}\", "
-                 f"dt = {result.dt * 1e3:g} ms, u in [{lo:g}, {hi:g}]\n"
-                 f"{scenario.description}")
+        title = (
+            f'{scenario.name}: example {scenario.example}, variant "{scenario.variant}", '
+            f"dt = {result.dt * 1e3:g} ms, u in [{lo:g}, {hi:g}]\n"
+            f"{scenario.description}"
+        )
     fig.suptitle(title, fontsize=12)
     return fig
 
@@ -421,7 +476,7 @@ def save(fig: Figure, path: str | Path) -> Path:
     return path
 
 
-def sweep_figure(rows: Sequence[dict], title: str = "") -> Figure:
+def sweep_figure(rows: Sequence[dict[str, Any]], title: str = "") -> Figure:
     """Settling time and the margin ``1 - max |xi~|`` against the sample rate.
 
     ``rows`` are :mod:`famcc.sweep` records (keys ``scenario``, ``rate_hz``,
@@ -440,12 +495,11 @@ def sweep_figure(rows: Sequence[dict], title: str = "") -> Figure:
 
     names = list(dict.fromkeys(r["scenario"] for r in rows))
     discs = list(dict.fromkeys(r["discretization"] for r in rows))
-    handles: list = []
-    labels: list = []
+    handles: list[Any] = []
+    labels: list[Any] = []
     ncol = min(3, len(names))
     nblock = math.ceil(len(names) / ncol)
-    fig = Figure(figsize=(max(5.0 * ncol, 9.0), 5.2 * nblock + 0.6), dpi=_DPI,
-                 layout="constrained")
+    fig = Figure(figsize=(max(5.0 * ncol, 9.0), 5.2 * nblock + 0.6), dpi=_DPI, layout="constrained")
     FigureCanvasAgg(fig)
     axes = fig.subplots(2 * nblock, ncol, squeeze=False)
     styles = {"exact": "-", "euler": ":", "tustin": "--"}
@@ -458,20 +512,34 @@ def sweep_figure(rows: Sequence[dict], title: str = "") -> Figure:
         fails_at_top = set()
         for d in discs:
             for lim in (False, True):
-                sel = sorted((r for r in rows if r["scenario"] == name
-                              and r["discretization"] == d and bool(r["limited"]) == lim),
-                             key=lambda r: r["rate_hz"])
+                sel = sorted(
+                    (
+                        r
+                        for r in rows
+                        if r["scenario"] == name
+                        and r["discretization"] == d
+                        and bool(r["limited"]) == lim
+                    ),
+                    key=lambda r: r["rate_hz"],
+                )
                 if not sel:
                     continue
                 rates = np.array([r["rate_hz"] for r in sel], dtype=float)
-                ts = np.array([np.nan if r["settling_time"] is None else r["settling_time"]
-                               for r in sel], dtype=float)
-                xi = np.array([np.nan if r["max_abs_xi"] is None else r["max_abs_xi"]
-                               for r in sel], dtype=float)
+                ts = np.array(
+                    [np.nan if r["settling_time"] is None else r["settling_time"] for r in sel],
+                    dtype=float,
+                )
+                xi = np.array(
+                    [np.nan if r["max_abs_xi"] is None else r["max_abs_xi"] for r in sel],
+                    dtype=float,
+                )
                 margin = np.maximum(1.0 - xi, 1e-17)
-                style = {"ls": styles.get(d, "-"), "marker": markers.get(d, "o"),
-                         "color": colors.get(d, "black"),
-                         "label": d + (" + limits" if lim else "")}
+                style = {
+                    "ls": styles.get(d, "-"),
+                    "marker": markers.get(d, "o"),
+                    "color": colors.get(d, "black"),
+                    "label": d + (" + limits" if lim else ""),
+                }
                 if lim:
                     style.update(lw=1.0, ms=7, mfc="none", alpha=0.9)
                 else:
@@ -487,12 +555,13 @@ def sweep_figure(rows: Sequence[dict], title: str = "") -> Figure:
                         fails_at_top.add(r["rate_hz"])
         sc = scenarios.paper(name, rows[0].get("variant", "code"))
         if not sc.saturated:
-            ax_t.axhline(sc.bound, color="black", ls="-.", lw=1.0,
-                         label=f"bound $T_s+T'$ = {sc.bound:.3g} s")
+            ax_t.axhline(
+                sc.bound, color="black", ls="-.", lw=1.0, label=f"bound $T_s+T'$ = {sc.bound:.3g} s"
+            )
             ax_t.set_title(f"{name}", fontsize=10)
         else:
             ax_t.set_title(f"{name} (bound max($T_e$, $T_s$)+$T'$ varies per run)", fontsize=10)
-        if fails_at_top:      # headroom, then the crosses in it
+        if fails_at_top:  # headroom, then the crosses in it
             lo, hi = ax_t.get_ylim()
             ax_t.set_ylim(lo, hi + 0.18 * (hi - lo))
         for rate in sorted(fails_at_top):
@@ -516,14 +585,24 @@ def sweep_figure(rows: Sequence[dict], title: str = "") -> Figure:
         labels.append("bound $T_s + T'$ (unsaturated scenarios)")
         handles.append(Line2D([], [], color="black", ls="none", marker="x", ms=8, mew=1.6))
         labels.append("guarantees not kept")
-        handles_labels = [(h, lab) for h, lab in zip(handles, labels)
-                          if not lab.startswith("bound $T_s+T'$")]
-        fig.legend([h for h, _ in handles_labels], [lab for _, lab in handles_labels],
-                   loc="outside lower center", ncol=8 if ncol >= 3 else 4, fontsize=8)
-    for k in range(len(names), nblock * ncol):       # unused slots
+        handles_labels = [
+            (h, lab) for h, lab in zip(handles, labels) if not lab.startswith("bound $T_s+T'$")
+        ]
+        fig.legend(
+            [h for h, _ in handles_labels],
+            [lab for _, lab in handles_labels],
+            loc="outside lower center",
+            ncol=8 if ncol >= 3 else 4,
+            fontsize=8,
+        )
+    for k in range(len(names), nblock * ncol):  # unused slots
         axes[2 * (k // ncol), k % ncol].set_visible(False)
         axes[2 * (k // ncol) + 1, k % ncol].set_visible(False)
-    fig.suptitle(title or "Sample-rate sweep: settling time to |z1| < 0.1 and the margin "
-                 "1 - max|xi~|\n(x: guarantees not kept; x at the top: never settled or "
-                 "diverged; missing points: no value)", fontsize=11)
+    fig.suptitle(
+        title
+        or "Sample-rate sweep: settling time to |z1| < 0.1 and the margin "
+        "1 - max|xi~|\n(x: guarantees not kept; x at the top: never settled or "
+        "diverged; missing points: no value)",
+        fontsize=11,
+    )
     return fig

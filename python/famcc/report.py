@@ -37,22 +37,31 @@ __all__ = ["Progress", "measure", "reproduce", "write_report"]
 
 #: docs/design.md §6 in a few lines: what differs between the two variants.
 VARIANT_DIFFERENCES = (
-    ("second-order plant: disturbance `3 sin t + 3 cos 2t` in the authors' code, "
-     "`sin t + cos 2t` in the paper"),
-    ("third-order plant: x(0) = (1, 0.5, 4) and eps_y = 3 in the code, (1, -0.2, 0.4) and "
-     "eps_y = 5 in the paper (the paper's printed x1-dot also omits the factor x2, which makes "
-     "the plant uncontrollable; both variants restore it)"),
-    ("skew offsets: the code multiplies the whole skewed function by its gain, so in famcc's "
-     "terms example 2 uses eps_s = 0.225 (paper 0.15) and example 3's first stage "
-     "eps_s = 0.1 (paper 0.2)"),
-    ("envelope latch: the code uses rho_0 = max(k0 |s(0)|, eps) (`latch=\"authors\"`), the "
-     "paper k0 max(|s(0)|, eps)"),
+    (
+        "second-order plant: disturbance `3 sin t + 3 cos 2t` in the authors' code, "
+        "`sin t + cos 2t` in the paper"
+    ),
+    (
+        "third-order plant: x(0) = (1, 0.5, 4) and eps_y = 3 in the code, (1, -0.2, 0.4) and "
+        "eps_y = 5 in the paper (the paper's printed x1-dot also omits the factor x2, which makes "
+        "the plant uncontrollable; both variants restore it)"
+    ),
+    (
+        "skew offsets: the code multiplies the whole skewed function by its gain, so in famcc's "
+        "terms example 2 uses eps_s = 0.225 (paper 0.15) and example 3's first stage "
+        "eps_s = 0.1 (paper 0.2)"
+    ),
+    (
+        'envelope latch: the code uses rho_0 = max(k0 |s(0)|, eps) (`latch="authors"`), the '
+        "paper k0 max(|s(0)|, eps)"
+    ),
 )
 
 
 # ---------------------------------------------------------------------------
 # progress
 # ---------------------------------------------------------------------------
+
 
 class Progress:
     """A small text progress bar on a stream (stderr by default).
@@ -62,8 +71,9 @@ class Progress:
     redrawn in place; elsewhere (logs, pipes) one line per item is printed.
     """
 
-    def __init__(self, total: int, title: str = "", stream: TextIO | None = None,
-                 width: int = 20) -> None:
+    def __init__(
+        self, total: int, title: str = "", stream: TextIO | None = None, width: int = 20
+    ) -> None:
         self.total = max(int(total), 1)
         self.done = 0
         self.stream = sys.stderr if stream is None else stream
@@ -97,6 +107,7 @@ class Progress:
 # numbers
 # ---------------------------------------------------------------------------
 
+
 def _intervals(t: np.ndarray, mask: np.ndarray) -> list[list[float]]:
     """Runs of True in ``mask`` as ``[start, end]`` sample times."""
     m = np.asarray(mask, dtype=np.int8)
@@ -122,8 +133,7 @@ def _guarantee_text(found: Sequence[verdicts.Verdict]) -> str:
     parts = []
     for v in found:
         if v.failed:
-            parts.append(f"**{v.name} FAILED**" + (" (known)" if v.known else "")
-                         + f": {v.detail}")
+            parts.append(f"**{v.name} FAILED**" + (" (known)" if v.known else "") + f": {v.detail}")
         else:
             parts.append(f"{v.name} {v.status}")
     return "; ".join(parts)
@@ -196,8 +206,7 @@ def measure(scenario: Any, result: Any, runtime_s: float | None = None) -> dict[
         "neg_f_over_g_outside_limits": negfg_out,
         "largest_expansion": _num(result.largest_expansion),
         "nominal_return_time": _num(result.nominal_return_time),
-        "max_abs_z1_last_second": float(
-            np.max(np.abs(result.z1[result.t >= horizon - 1.0]))),
+        "max_abs_z1_last_second": float(np.max(np.abs(result.z1[result.t >= horizon - 1.0]))),
         "verdicts": [dataclasses.asdict(v) for v in found],
         "verdict_counts": verdicts.count(found),
         "violations": violations,
@@ -206,28 +215,54 @@ def measure(scenario: Any, result: Any, runtime_s: float | None = None) -> dict[
     }
 
 
-def diverged(scenario: Any, exc: BaseException, runtime_s: float | None = None
-             ) -> dict[str, Any]:
+def diverged(scenario: Any, exc: BaseException, runtime_s: float | None = None) -> dict[str, Any]:
     """The record of a run that blew up: every claim failed, no metrics."""
-    found = [verdicts.Verdict(name, name, "failed", f"the closed loop diverged: {exc}")
-             for name in scenario.claims]
-    keys = ("settling_time", "first_entry", "max_abs_xi", "max_abs_xi_nominal",
-            "expanded_fraction", "expanded_unsaturated_fraction", "steady_rms", "u_min",
-            "u_max", "saturated_fraction", "largest_expansion", "nominal_return_time",
-            "last_saturation_end_T_e", "max_abs_z1_last_second")
+    found = [
+        verdicts.Verdict(name, name, "failed", f"the closed loop diverged: {exc}")
+        for name in scenario.claims
+    ]
+    keys = (
+        "settling_time",
+        "first_entry",
+        "max_abs_xi",
+        "max_abs_xi_nominal",
+        "expanded_fraction",
+        "expanded_unsaturated_fraction",
+        "steady_rms",
+        "u_min",
+        "u_max",
+        "saturated_fraction",
+        "largest_expansion",
+        "nominal_return_time",
+        "last_saturation_end_T_e",
+        "max_abs_z1_last_second",
+    )
     lo, hi = scenario.u_limits
     return {
-        "scenario": scenario.name, "example": scenario.example, "variant": scenario.variant,
-        "description": scenario.description, "saturated_scenario": bool(scenario.saturated),
-        "dt": None, "t_end": None, "eps_z": float(scenario.eps_z),
+        "scenario": scenario.name,
+        "example": scenario.example,
+        "variant": scenario.variant,
+        "description": scenario.description,
+        "saturated_scenario": bool(scenario.saturated),
+        "dt": None,
+        "t_end": None,
+        "eps_z": float(scenario.eps_z),
         "paper_settling_time": _num(scenario.paper_settling_time),
-        "settle_time_T_s": float(scenario.settle_time), "t_prime": float(scenario.t_prime),
+        "settle_time_T_s": float(scenario.settle_time),
+        "t_prime": float(scenario.t_prime),
         **dict.fromkeys(keys),
-        "bound": None, "bound_kind": None, "bound_within_horizon": None,
-        "regains_accuracy_claimed": bool(scenario.regains_accuracy), "clamp_count": None,
-        "u_limits": [float(lo), float(hi)], "u_range_after_startup": None,
-        "u_peak_time": None, "u_initial": None, "saturation_episodes": [],
-        "neg_f_over_g_range": None, "neg_f_over_g_outside_limits": [],
+        "bound": None,
+        "bound_kind": None,
+        "bound_within_horizon": None,
+        "regains_accuracy_claimed": bool(scenario.regains_accuracy),
+        "clamp_count": None,
+        "u_limits": [float(lo), float(hi)],
+        "u_range_after_startup": None,
+        "u_peak_time": None,
+        "u_initial": None,
+        "saturation_episodes": [],
+        "neg_f_over_g_range": None,
+        "neg_f_over_g_outside_limits": [],
         "verdicts": [dataclasses.asdict(v) for v in found],
         "verdict_counts": verdicts.count(found),
         "violations": [v.text() for v in found],
@@ -242,9 +277,17 @@ def diverged(scenario: Any, exc: BaseException, runtime_s: float | None = None
 # running
 # ---------------------------------------------------------------------------
 
-def reproduce(out: str | Path, *, names: Sequence[str] | None = None, variant: str = "code",
-              dt: float = 1e-3, t_end: float | None = None, figures: bool = True,
-              progress: Any = "stderr") -> list[dict[str, Any]]:
+
+def reproduce(
+    out: str | Path,
+    *,
+    names: Sequence[str] | None = None,
+    variant: str = "code",
+    dt: float = 1e-3,
+    t_end: float | None = None,
+    figures: bool = True,
+    progress: Any = "stderr",
+) -> list[dict[str, Any]]:
     """Runs the scenarios, writes figures, ``report.md`` and ``summary.json`` into ``out``.
 
     Parameters
@@ -275,17 +318,24 @@ def reproduce(out: str | Path, *, names: Sequence[str] | None = None, variant: s
     names = list(scenarios.names() if not names else names)
     for name in names:
         if name not in scenarios.names():
-            raise ValueError(f"unknown scenario {name!r}; choose from "
-                             f"{', '.join(scenarios.names())}")
+            raise ValueError(
+                f"unknown scenario {name!r}; choose from {', '.join(scenarios.names())}"
+            )
     if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt must be a finite number > 0, got {dt!r}")
     if t_end is not None and not (math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_end must be a finite number > 0, got {t_end!r}")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    bar = (Progress(len(names), f"famcc reproduce: {len(names)} scenario(s), variant "
-                    f"{variant!r}, dt = {dt:g} s -> {out}")
-           if progress == "stderr" else progress)
+    bar = (
+        Progress(
+            len(names),
+            f"famcc reproduce: {len(names)} scenario(s), variant "
+            f"{variant!r}, dt = {dt:g} s -> {out}",
+        )
+        if progress == "stderr"
+        else progress
+    )
     t_start = time.perf_counter()
     records = []
     results = {}
@@ -315,7 +365,7 @@ def reproduce(out: str | Path, *, names: Sequence[str] | None = None, variant: s
         results[name] = res
         if bar is not None:
             c = rec["verdict_counts"]
-            status = (f"{c['held']} held, {c['failed']} failed, {c['untested']} untested")
+            status = f"{c['held']} held, {c['failed']} failed, {c['untested']} untested"
             bar.step(f"{name} ({status})", time.perf_counter() - t0)
     meta = {
         "variant": variant,
@@ -330,6 +380,7 @@ def reproduce(out: str | Path, *, names: Sequence[str] | None = None, variant: s
 # ---------------------------------------------------------------------------
 # writing
 # ---------------------------------------------------------------------------
+
 
 def _f(v: Any, digits: int = 3) -> str:
     if v is None:
@@ -347,7 +398,7 @@ def _t(v: Any) -> str:
     return text or "0"
 
 
-def _bound_cell(r: dict) -> str:
+def _bound_cell(r: dict[str, Any]) -> str:
     if r["bound_kind"] == "T_s + T'":
         return f"{r['bound']:.3g} (T_s + T')"
     te = r["last_saturation_end_T_e"]
@@ -358,16 +409,32 @@ def _pct(v: float | None) -> str:
     return "-" if v is None else f"{100 * v:.1f} %"
 
 
-def _table(records: Sequence[dict]) -> list[str]:
-    head = ("scenario", "horizon [s]", "settling time [s]", "first entry [s]", "paper [s]",
-            "bound [s]",
-            "max nominal \\|xi\\|", "max \\|xi~\\|", "expanded while unsaturated",
-            "u range", "saturated", "largest expansion", "guarantees")
+def _table(records: Sequence[dict[str, Any]]) -> list[str]:
+    head = (
+        "scenario",
+        "horizon [s]",
+        "settling time [s]",
+        "first entry [s]",
+        "paper [s]",
+        "bound [s]",
+        "max nominal \\|xi\\|",
+        "max \\|xi~\\|",
+        "expanded while unsaturated",
+        "u range",
+        "saturated",
+        "largest expansion",
+        "guarantees",
+    )
     lines = ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] * len(head)) + "|"]
     for r in records:
         if r.get("error"):
-            cells = (r["scenario"], "-", "diverged", *["-"] * (len(head) - 4),
-                     r["guarantees"].replace("|", "\\|"))
+            cells = (
+                r["scenario"],
+                "-",
+                "diverged",
+                *["-"] * (len(head) - 4),
+                r["guarantees"].replace("|", "\\|"),
+            )
             lines.append("| " + " | ".join(cells) + " |")
             continue
         ts = r["settling_time"]
@@ -381,8 +448,10 @@ def _table(records: Sequence[dict]) -> list[str]:
             _f(r["max_abs_xi_nominal"], 4),
             "-" if r["max_abs_xi"] is None else f"{r['max_abs_xi']:.4f}",
             _pct(r["expanded_unsaturated_fraction"]),
-            (f"[{r['u_min']:.3g}, {r['u_max']:.3g}] in [{r['u_limits'][0]:g}, "
-             f"{r['u_limits'][1]:g}]"),
+            (
+                f"[{r['u_min']:.3g}, {r['u_max']:.3g}] in [{r['u_limits'][0]:g}, "
+                f"{r['u_limits'][1]:g}]"
+            ),
             _pct(r["saturated_fraction"]),
             "-" if r["largest_expansion"] in (None, 1.0) else f"{r['largest_expansion']:.3g}x",
             r["guarantees"].replace("|", "\\|"),
@@ -391,7 +460,7 @@ def _table(records: Sequence[dict]) -> list[str]:
     return lines
 
 
-def _verdict_lines(records: Sequence[dict]) -> list[str]:
+def _verdict_lines(records: Sequence[dict[str, Any]]) -> list[str]:
     """Every claim of every run: one table row each."""
     lines = ["| scenario | claim | status | what the run showed |", "|---|---|---|---|"]
     for r in records:
@@ -399,12 +468,14 @@ def _verdict_lines(records: Sequence[dict]) -> list[str]:
             status = v["status"].upper() if v["status"] == "failed" else v["status"]
             if v["known"] and v["status"] == "failed":
                 status += " (known, docs/errata.md)"
-            lines.append(f"| {r['scenario']} | {v['claim'].replace('|', chr(92) + '|')} | "
-                         f"{status} | {v['detail'].replace('|', chr(92) + '|')} |")
+            lines.append(
+                f"| {r['scenario']} | {v['claim'].replace('|', chr(92) + '|')} | "
+                f"{status} | {v['detail'].replace('|', chr(92) + '|')} |"
+            )
     return lines
 
 
-def headline(records: Sequence[dict]) -> str:
+def headline(records: Sequence[dict[str, Any]]) -> str:
     """The report's first finding: the guarantees counted, never summarised.
 
     >>> headline([{"scenario": "a", "verdict_counts": {"held": 2, "failed": 0, "untested": 1,
@@ -412,12 +483,20 @@ def headline(records: Sequence[dict]) -> str:
     ...            "verdicts": [{"name": "settling", "status": "untested"}]}])
     '**2 of 3 guarantees tested: 2 hold, 0 fail; 1 untested** (untested: a settling; why in the table of claims).'
     """
-    total = {k: sum(r["verdict_counts"][k] for r in records)
-             for k in ("held", "failed", "untested", "tested", "total")}
-    text = (f"**{total['tested']} of {total['total']} guarantees tested: {total['held']} hold, "
-            f"{total['failed']} fail; {total['untested']} untested**")
-    untested = [f"{r['scenario']} {v['name']}" for r in records for v in r["verdicts"]
-                if v["status"] == "untested"]
+    total = {
+        k: sum(r["verdict_counts"][k] for r in records)
+        for k in ("held", "failed", "untested", "tested", "total")
+    }
+    text = (
+        f"**{total['tested']} of {total['total']} guarantees tested: {total['held']} hold, "
+        f"{total['failed']} fail; {total['untested']} untested**"
+    )
+    untested = [
+        f"{r['scenario']} {v['name']}"
+        for r in records
+        for v in r["verdicts"]
+        if v["status"] == "untested"
+    ]
     if untested:
         text += " (untested: " + ", ".join(untested) + "; why in the table of claims)"
     return text + "."
@@ -428,24 +507,34 @@ def _count(n: int, word: str) -> str:
 
 
 def _episodes_text(eps: Iterable[Sequence[float]], min_len: float = 0.0) -> str:
-    parts = [(f"{a:.2f}-{b:.2f} s" if b - a >= 0.02 else f"{a:.3f}-{b:.3f} s")
-             for a, b in eps if b - a >= min_len]
+    parts = [
+        (f"{a:.2f}-{b:.2f} s" if b - a >= 0.02 else f"{a:.3f}-{b:.3f} s")
+        for a, b in eps
+        if b - a >= min_len
+    ]
     return ", ".join(parts) if parts else "none"
 
 
-def _notes(records: Sequence[dict], meta: dict) -> list[str]:
-    notes: list[str] = [f"- **{r['scenario']} diverged**: {r['error']}. Every claim of it "
-                        "counts as failed." for r in records if r.get("error")]
+def _notes(records: Sequence[dict[str, Any]], meta: dict[str, Any]) -> list[str]:
+    notes: list[str] = [
+        f"- **{r['scenario']} diverged**: {r['error']}. Every claim of it counts as failed."
+        for r in records
+        if r.get("error")
+    ]
     records = [r for r in records if not r.get("error")]
     variant = meta["variant"]
     other = "paper" if variant == "code" else "code"
     notes.append(
         f"- **Variant.** These runs use variant `{variant}`"
-        + (" (the numbers of the authors' public MATLAB code, the default)" if variant == "code"
-           else " (the numbers printed in the paper)")
+        + (
+            " (the numbers of the authors' public MATLAB code, the default)"
+            if variant == "code"
+            else " (the numbers printed in the paper)"
+        )
         + f"; `famcc reproduce --variant {other}` runs the other one. They differ because the "
         "paper and the code disagree (docs/design.md §6): "
-        + "; ".join(VARIANT_DIFFERENCES) + ". With the paper's printed disturbance amplitude 1 "
+        + "; ".join(VARIANT_DIFFERENCES)
+        + ". With the paper's printed disturbance amplitude 1 "
         "the saturated second-order runs barely saturate; with the code's amplitude 3 they do."
     )
     by_name = {r["scenario"]: r for r in records}
@@ -455,23 +544,30 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
             continue
         ts = r["settling_time"]
         if ts is None:
-            notes.append(f"- **{r['scenario']}.** Never settled within the horizon; the paper "
-                         f"reports {p:g} s.")
+            notes.append(
+                f"- **{r['scenario']}.** Never settled within the horizon; the paper "
+                f"reports {p:g} s."
+            )
             continue
         diff = ts - p
-        verdict = ("close to" if abs(diff) <= 0.1 else
-                   ("faster than" if diff < 0 else "slower than"))
-        line = (f"- **{r['scenario']} (example {r['example']}).** Measured settling time "
-                f"{_t(ts)} s, {verdict} the paper's {p:g} s ({diff:+.2f} s); the corollary's "
-                f"bound is {r['bound']:.3g} s.")
+        verdict = "close to" if abs(diff) <= 0.1 else ("faster than" if diff < 0 else "slower than")
+        line = (
+            f"- **{r['scenario']} (example {r['example']}).** Measured settling time "
+            f"{_t(ts)} s, {verdict} the paper's {p:g} s ({diff:+.2f} s); the corollary's "
+            f"bound is {r['bound']:.3g} s."
+        )
         if r["example"] == 1:
-            line += (" The authors' own code, run closed loop, also settles example 1 in about "
-                     "1.3 s: the printed 1.9 s is not what the published law produces, and famcc "
-                     "matches the mathematics, not the printed number.")
+            line += (
+                " The authors' own code, run closed loop, also settles example 1 in about "
+                "1.3 s: the printed 1.9 s is not what the published law produces, and famcc "
+                "matches the mathematics, not the printed number."
+            )
         if r["example"] == 3:
-            line += (" The two variants start from different states (x(0) = (1, 0.5, 4) in the "
-                     "code, (1, -0.2, 0.4) in the paper) and use different eps_y, so a "
-                     "difference of a few tenths of a second is expected.")
+            line += (
+                " The two variants start from different states (x(0) = (1, 0.5, 4) in the "
+                "code, (1, -0.2, 0.4) in the paper) and use different eps_y, so a "
+                "difference of a few tenths of a second is expected."
+            )
         notes.append(line)
     latch, peaking = [], []
     for r in records:
@@ -481,22 +577,27 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
         if r["saturated_scenario"] or peak <= 1.5 * late_peak:
             continue
         if peak <= 1.05 * abs(r["u_initial"]):
-            latch.append(f"{r['scenario']} (u(0) = {r['u_initial']:.3g}, |u| <= "
-                         f"{late_peak:.3g} after {STARTUP:g} s)")
+            latch.append(
+                f"{r['scenario']} (u(0) = {r['u_initial']:.3g}, |u| <= "
+                f"{late_peak:.3g} after {STARTUP:g} s)"
+            )
         else:
-            peaking.append(f"{r['scenario']} (|u| up to {peak:.3g} at t = "
-                           f"{r['u_peak_time']:.3f} s, <= {late_peak:.3g} after {STARTUP:g} s)")
+            peaking.append(
+                f"{r['scenario']} (|u| up to {peak:.3g} at t = "
+                f"{r['u_peak_time']:.3f} s, <= {late_peak:.3g} after {STARTUP:g} s)"
+            )
     if latch:
         notes.append(
             "- **Initial input.** The envelope latches rho_0 = k0 |s(0)|, so xi~(0) = 1/k0 = 0.5 "
-            "and u(0) = -k_u Gamma(+-0.5), larger than anything later in: " + "; ".join(latch)
-            + ".")
+            "and u(0) = -k_u Gamma(+-0.5), larger than anything later in: " + "; ".join(latch) + "."
+        )
     if peaking:
         notes.append(
             "- **Start-up peaking.** The high-gain differentiator starts from z_hat = (e0, 0, "
             "...) and overshoots for a few time constants (mu = 0.01 s; about 0.1 s for order "
             "3); the law passes that to u: " + "; ".join(peaking) + ". The u panels are zoomed "
-            "past it and state the off-scale range.")
+            "past it and state the off-scale range."
+        )
     for r in records:
         if not r["saturated_scenario"] and r["saturated_fraction"] > 0:
             notes.append(
@@ -513,9 +614,11 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
         eps_list = r["saturation_episodes"]
         startup = [e for e in eps_list if e[1] <= 0.1]
         later = [e for e in eps_list if e[1] > 0.1]
-        line = (f"- **{r['scenario']}.** u stayed in [{r['u_min']:.3g}, {r['u_max']:.3g}] "
-                f"inside [{lo:g}, {hi:g}]; v was outside the limits at "
-                f"{100 * r['saturated_fraction']:.1f} % of the samples")
+        line = (
+            f"- **{r['scenario']}.** u stayed in [{r['u_min']:.3g}, {r['u_max']:.3g}] "
+            f"inside [{lo:g}, {hi:g}]; v was outside the limits at "
+            f"{100 * r['saturated_fraction']:.1f} % of the samples"
+        )
         long_ = [e for e in later if e[1] - e[0] >= 0.02]
         short = [e for e in later if e[1] - e[0] < 0.02]
         if long_:
@@ -523,53 +626,77 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
             if short:
                 line += f" (plus {_count(len(short), 'episode')} shorter than 20 ms)"
         elif short:
-            line += (f", after start-up only in {_count(len(short), 'episode')} shorter than "
-                     f"20 ms ({_episodes_text(short)})")
+            line += (
+                f", after start-up only in {_count(len(short), 'episode')} shorter than "
+                f"20 ms ({_episodes_text(short)})"
+            )
         if startup:
-            line += (f"; {_count(len(startup), 'episode')} before 0.1 s "
-                     f"{'is' if len(startup) == 1 else 'are'} the start-up transient (the "
-                     "latched first input and the differentiator's peaking)")
+            line += (
+                f"; {_count(len(startup), 'episode')} before 0.1 s "
+                f"{'is' if len(startup) == 1 else 'are'} the start-up transient (the "
+                "latched first input and the differentiator's peaking)"
+            )
         line += "."
         out_fg = [e for e in r["neg_f_over_g_outside_limits"] if e[1] - e[0] >= 0.01]
         if out_fg:
-            line += (f" -F/G itself (the input that merely holds z_n constant) is outside the "
-                     f"limits during {_episodes_text(out_fg)}: there no admissible input can even "
-                     "hold the error still, so that saturation is physical, not a tuning "
-                     "artefact; the other saturated stretches are the law's own transient "
-                     "demand.")
+            line += (
+                f" -F/G itself (the input that merely holds z_n constant) is outside the "
+                f"limits during {_episodes_text(out_fg)}: there no admissible input can even "
+                "hold the error still, so that saturation is physical, not a tuning "
+                "artefact; the other saturated stretches are the law's own transient "
+                "demand."
+            )
         elif later:
-            line += (" -F/G stays inside the limits; the saturation comes from the law's "
-                     "transient demand (the envelope asks for more than the actuator gives).")
+            line += (
+                " -F/G stays inside the limits; the saturation comes from the law's "
+                "transient demand (the envelope asks for more than the actuator gives)."
+            )
         if r["largest_expansion"] not in (None, 1.0):
             ret = r["nominal_return_time"]
-            line += (f" The flexible bounds expanded up to {r['largest_expansion']:.3g}x the "
-                     "nominal ones and " + (f"were nominal again from t = {_t(ret)} s."
-                                            if ret is not None else "had not returned by the end."))
+            line += (
+                f" The flexible bounds expanded up to {r['largest_expansion']:.3g}x the "
+                "nominal ones and "
+                + (
+                    f"were nominal again from t = {_t(ret)} s."
+                    if ret is not None
+                    else "had not returned by the end."
+                )
+            )
         else:
             line += " The flexible bounds never expanded."
         ts, fe = r["settling_time"], r["first_entry"]
         if r["t_end"] > 10.0 + r["dt"]:
-            line += (f" The run was extended to {r['t_end']:.3g} s so that the recovery claim of "
-                     "its last saturation episode could fall due.")
+            line += (
+                f" The run was extended to {r['t_end']:.3g} s so that the recovery claim of "
+                "its last saturation episode could fall due."
+            )
         if ts is None:
-            line += (f" |z1| < {r['eps_z']:g} was first reached at {_t(fe)} s but was outside "
-                     f"the band at the end (max |z1| in the last second: "
-                     f"{r['max_abs_z1_last_second']:.3g}).")
+            line += (
+                f" |z1| < {r['eps_z']:g} was first reached at {_t(fe)} s but was outside "
+                f"the band at the end (max |z1| in the last second: "
+                f"{r['max_abs_z1_last_second']:.3g})."
+            )
         elif fe is not None and ts > fe + r["dt"]:
-            line += (f" |z1| < {r['eps_z']:g} was first reached at {_t(fe)} s, lost while "
-                     f"saturated, and held from {_t(ts)} s to the end.")
+            line += (
+                f" |z1| < {r['eps_z']:g} was first reached at {_t(fe)} s, lost while "
+                f"saturated, and held from {_t(ts)} s to the end."
+            )
         else:
             line += f" |z1| < {r['eps_z']:g} held from {_t(ts)} s to the end."
         for v in r["verdicts"]:
             line += f" Claim *{v['name']}*: {v['status']} ({v['detail']})."
             if v["known"] and v["status"] == "failed":
-                line += (" This is the documented behaviour of the paper's own numbers "
-                         "(docs/errata.md): it is reported, not tuned away.")
+                line += (
+                    " This is the documented behaviour of the paper's own numbers "
+                    "(docs/errata.md): it is reported, not tuned away."
+                )
         notes.append(line)
     if variant == "code" and "rfc-saturated" in by_name:
-        notes.append("- With variant `paper` the saturated third-order run (-F/G reaches about "
-                     "[-22, 30], far outside [-7, 9]) never regains 0.1 accuracy within 10 s; "
-                     "its *settles* claim then fails, marked as known (docs/errata.md).")
+        notes.append(
+            "- With variant `paper` the saturated third-order run (-F/G reaches about "
+            "[-22, 30], far outside [-7, 9]) never regains 0.1 accuracy within 10 s; "
+            "its *settles* claim then fails, marked as known (docs/errata.md)."
+        )
     notes.append(
         "- **What the guarantees are** (`Scenario.verdicts`, docs/design.md §8). Each claim is "
         "held, failed or untested, and a test shows each one failing on a bad run. A scenario "
@@ -583,13 +710,15 @@ def _notes(records: Sequence[dict], meta: dict) -> list[str]:
         "whose bound lies beyond the horizon, or that saturation pre-empts every time, is "
         "untested, never held. |xi~| < 1 is not a claim: once the bounds expand it holds by "
         "construction; the table shows the nominal |xi| beside it. The settling time is the "
-        "first time after which |z1| < 0.1 holds to the end; \"first entry\" is the first "
+        'first time after which |z1| < 0.1 holds to the end; "first entry" is the first '
         "sample inside the band."
     )
     return notes
 
 
-def write_report(records: Sequence[dict], out: str | Path, meta: dict) -> tuple[Path, Path]:
+def write_report(
+    records: Sequence[dict[str, Any]], out: str | Path, meta: dict[str, Any]
+) -> tuple[Path, Path]:
     """Writes ``report.md`` and ``summary.json`` into ``out``; returns their paths."""
     import famcc
 
@@ -603,8 +732,10 @@ def write_report(records: Sequence[dict], out: str | Path, meta: dict) -> tuple[
         "dt": meta.get("dt"),
         "t_end": meta.get("t_end"),
         "runtime_s": _num(meta.get("runtime_s")),
-        "guarantees": {k: sum(r["verdict_counts"][k] for r in records)
-                       for k in ("held", "failed", "untested", "tested", "total")},
+        "guarantees": {
+            k: sum(r["verdict_counts"][k] for r in records)
+            for k in ("held", "failed", "untested", "tested", "total")
+        },
         "no_guarantee_failed": failed == 0,
         "all_guarantees_hold": failed == 0 and untested == 0,
         "scenarios": list(records),
@@ -631,19 +762,21 @@ def write_report(records: Sequence[dict], out: str | Path, meta: dict) -> tuple[
         "",
         *_table(records),
         "",
-        ("Horizon: length of the run; settling time: first time after which |z1| < 0.1 to "
-         "the end of the run (`SimResult."
-         "settling_time(0.1)`); first entry: first sample with |z1| < 0.1; paper: the time the "
-         "paper reports; bound: the corollary's bound T_s + T' for a run that never saturated, "
-         "max(T_e, T_s) + T' otherwise (T_e: end of the last saturation episode); u range: "
-         "applied input against the limits; saturated: share of samples whose commanded v lay "
-         "outside the limits; max nominal |xi|: the constraint variable before the flexible "
-         "expansion (above 1 the state left the nominal constraint set); max |xi~|: the "
-         "flexible one the law used (below 1 by construction); expanded while unsaturated: "
-         "share of samples with the bounds expanded although v lay inside the limits (the "
-         "accuracy given up with headroom left); largest expansion: flexible over nominal "
-         "bound. Saturated scenarios may run past 10 s so that their recovery claims fall due "
-         "(the horizon of each run is in `summary.json`)."),
+        (
+            "Horizon: length of the run; settling time: first time after which |z1| < 0.1 to "
+            "the end of the run (`SimResult."
+            "settling_time(0.1)`); first entry: first sample with |z1| < 0.1; paper: the time the "
+            "paper reports; bound: the corollary's bound T_s + T' for a run that never saturated, "
+            "max(T_e, T_s) + T' otherwise (T_e: end of the last saturation episode); u range: "
+            "applied input against the limits; saturated: share of samples whose commanded v lay "
+            "outside the limits; max nominal |xi|: the constraint variable before the flexible "
+            "expansion (above 1 the state left the nominal constraint set); max |xi~|: the "
+            "flexible one the law used (below 1 by construction); expanded while unsaturated: "
+            "share of samples with the bounds expanded although v lay inside the limits (the "
+            "accuracy given up with headroom left); largest expansion: flexible over nominal "
+            "bound. Saturated scenarios may run past 10 s so that their recovery claims fall due "
+            "(the horizon of each run is in `summary.json`)."
+        ),
         "",
         "## Claims",
         "",
@@ -664,8 +797,11 @@ def write_report(records: Sequence[dict], out: str | Path, meta: dict) -> tuple[
                 f"{r['description']}. Panels: (a) z and its estimate, (b) z1 after T_s with the "
                 "0.1 band, (c)/(d) the constrained offset with nominal (dashed black) and "
                 "flexible (solid red) bounds, (e) phase portrait, "
-                + ("(f) constrained stage (s2, ds2), (g) u and -F/G, (h) xi~."
-                   if r["example"] == 3 else "(f) u and -F/G.")
+                + (
+                    "(f) constrained stage (s2, ds2), (g) u and -F/G, (h) xi~."
+                    if r["example"] == 3
+                    else "(f) u and -F/G."
+                )
                 + " Shaded: v outside the limits.",
                 "",
                 f"![{r['scenario']}]({r['figure']})",

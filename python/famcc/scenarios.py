@@ -31,10 +31,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import famcc
 from famcc import bounds, plants, verdicts
+
+if TYPE_CHECKING:
+    from famcc.simulation import SimResult
 
 __all__ = ["MAX_EXTENSIONS", "MAX_HORIZON", "MAX_RK4_STEP", "VARIANTS", "Scenario", "names",
            "paper", "substeps_for"]
@@ -104,8 +107,8 @@ class Scenario:
     example: int
     saturated: bool
     plant: Any
-    controller_kwargs: dict = field(repr=False)
-    u_limits: tuple
+    controller_kwargs: dict[str, Any] = field(repr=False)
+    u_limits: tuple[float, float]
     t_end: float
     eps_z: float
     t_prime: float
@@ -127,7 +130,7 @@ class Scenario:
         return famcc.Controller(order, dt, **kw)
 
     def run(self, dt: float = 1e-3, t_end: float | None = None, substeps: int | None = None,
-            **overrides: Any):
+            **overrides: Any) -> SimResult:
         """Simulates the scenario; returns a :class:`famcc.SimResult`.
 
         ``overrides`` go to the controller (e.g. ``differentiator=...``);
@@ -142,12 +145,12 @@ class Scenario:
         saturation keeps returning sooner than ``T'``, the claim stays untested
         and :meth:`verdicts` says so.
         """
-        from famcc.simulate import simulate
+        from famcc.simulation import simulate
 
         horizon = self.t_end if t_end is None else t_end
         substeps = substeps_for(dt) if substeps is None else substeps
 
-        def once(h: float) -> Any:
+        def once(h: float) -> SimResult:
             return simulate(self.plant, self.controller(dt, **overrides), h,
                             u_limits=self.u_limits, substeps=substeps)
 
@@ -165,12 +168,12 @@ class Scenario:
             res = once(horizon)
         return res
 
-    def recovery_bound(self, result) -> float:
+    def recovery_bound(self, result: SimResult) -> float:
         """max(T_e, T_s) + T' (s), with T_e the end of the last saturation episode."""
         t_e = result.last_saturation_end or 0.0
         return max(t_e, self.settle_time) + self.t_prime
 
-    def verdicts(self, result) -> list[verdicts.Verdict]:
+    def verdicts(self, result: SimResult) -> list[verdicts.Verdict]:
         """The paper's claims for this scenario, each held, failed or untested.
 
         A scenario designed without saturation (limits +-100) is checked for
@@ -199,7 +202,7 @@ class Scenario:
             return ("settling", "unsaturated", "nominal")
         return ("settles", "recovery", "nominal-again")
 
-    def check(self, result) -> list[str]:
+    def check(self, result: SimResult) -> list[str]:
         """The claims this run fails, one line each (empty when none fails).
 
         Untested claims are not failures, and not successes either: see
@@ -222,7 +225,7 @@ def names() -> list[str]:
     return list(_NAMES)
 
 
-def _design(example: int, variant: str) -> tuple[dict, float, str]:
+def _design(example: int, variant: str) -> tuple[dict[str, Any], float, str]:
     latch = "authors" if variant == "code" else "paper"
     if example == 1:
         kw = {"order": 2, "feedback": famcc.FiniteTime(k=1.0, p=0.5), "constraint": "lateral",

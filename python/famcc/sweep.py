@@ -73,18 +73,21 @@ LIMIT_FACTOR = 4.0
 #: The rate the sweep asks about, Hz.
 TARGET_HZ = 200
 #: The three verdicts, weakest first, with their names in the report.
-CRITERIA = (("ok", "guarantees"), ("nominal_ok", "+ nominal constraint"),
-            ("performance_ok", "+ performance as at the fastest rate"))
+CRITERIA = (
+    ("ok", "guarantees"),
+    ("nominal_ok", "+ nominal constraint"),
+    ("performance_ok", "+ performance as at the fastest rate"),
+)
 
 
 def initial_error(scenario: Any) -> np.ndarray:
     """The scenario's true initial error vector ``z(0)`` (reference ``y_d = sin t``)."""
-    from famcc.simulate import Sine
+    from famcc.simulation import Sine
 
     ref = Sine()
     plant = scenario.plant
     y = np.asarray(plant.output_derivatives(0.0, np.asarray(plant.x0, dtype=float)), dtype=float)
-    return y - np.array([ref(0.0, k) for k in range(len(y))])
+    return np.asarray(y - np.array([ref(0.0, k) for k in range(len(y))]), dtype=float)
 
 
 def estimate_limits(scenario: Any, factor: float = LIMIT_FACTOR) -> list[float]:
@@ -99,8 +102,9 @@ def estimate_limits(scenario: Any, factor: float = LIMIT_FACTOR) -> list[float]:
     return [float(factor * max(abs(v), 1.0)) for v in z0]
 
 
-def _differentiator(scenario: Any, discretization: str, limited: bool,
-                    factor: float = LIMIT_FACTOR) -> Any:
+def _differentiator(
+    scenario: Any, discretization: str, limited: bool, factor: float = LIMIT_FACTOR
+) -> Any:
     import famcc
 
     base = scenario.controller_kwargs["differentiator"]
@@ -109,30 +113,59 @@ def _differentiator(scenario: Any, discretization: str, limited: bool,
     return famcc.HighGain(base.mu, list(base.a), discretization=kind, limits=limits)
 
 
-def run_one(name: str, variant: str, rate_hz: float, discretization: str, limited: bool,
-            t_end: float | None = None, limit_factor: float = LIMIT_FACTOR) -> dict[str, Any]:
+def run_one(
+    name: str,
+    variant: str,
+    rate_hz: float,
+    discretization: str,
+    limited: bool,
+    t_end: float | None = None,
+    limit_factor: float = LIMIT_FACTOR,
+) -> dict[str, Any]:
     """One sweep point; returns a JSON-friendly record (never raises for a diverging loop)."""
     from famcc import scenarios
 
     sc = scenarios.paper(name, variant)
     dt = 1.0 / rate_hz
     rec: dict[str, Any] = {
-        "scenario": name, "variant": variant, "rate_hz": rate_hz, "dt": dt,
-        "discretization": discretization, "limited": bool(limited),
+        "scenario": name,
+        "variant": variant,
+        "rate_hz": rate_hz,
+        "dt": dt,
+        "discretization": discretization,
+        "limited": bool(limited),
         "limits": estimate_limits(sc, limit_factor) if limited else None,
         "substeps": substeps_for(dt),
-        "settling_time": None, "first_entry": None, "max_abs_xi": None, "clamp_count": None,
-        "u_min": None, "u_max": None, "saturated_fraction": None, "largest_expansion": None,
-        "saturated_after_startup": None, "expanded_after_startup": None,
-        "expanded_without_saturation": None, "bound_beyond_horizon": None,
-        "nominal_ok": False, "performance_ok": False,
-        "bound": sc.bound, "bound_kind": "T_s + T'", "settled_within_bound": False,
-        "violations": [], "error": None, "ok": False, "runtime_s": None,
+        "settling_time": None,
+        "first_entry": None,
+        "max_abs_xi": None,
+        "clamp_count": None,
+        "u_min": None,
+        "u_max": None,
+        "saturated_fraction": None,
+        "largest_expansion": None,
+        "saturated_after_startup": None,
+        "expanded_after_startup": None,
+        "expanded_without_saturation": None,
+        "bound_beyond_horizon": None,
+        "nominal_ok": False,
+        "performance_ok": False,
+        "bound": sc.bound,
+        "bound_kind": "T_s + T'",
+        "settled_within_bound": False,
+        "violations": [],
+        "error": None,
+        "ok": False,
+        "runtime_s": None,
     }
     t0 = time.perf_counter()
     try:
-        res = sc.run(dt=dt, t_end=t_end, substeps=substeps_for(dt),
-                     differentiator=_differentiator(sc, discretization, limited, limit_factor))
+        res = sc.run(
+            dt=dt,
+            t_end=t_end,
+            substeps=substeps_for(dt),
+            differentiator=_differentiator(sc, discretization, limited, limit_factor),
+        )
     except (FloatingPointError, ValueError, OverflowError, ArithmeticError) as exc:
         rec["error"] = f"{type(exc).__name__}: {exc}"
         rec["violations"] = ["diverged: " + str(exc).split(":")[0]]
@@ -155,35 +188,39 @@ def run_one(name: str, variant: str, rate_hz: float, discretization: str, limite
     exp_late = bool(np.any(exp[late]))
     # The accuracy given up with headroom left: expanded while v was inside the limits.
     expanded_unsat = bool(np.any((exp & ~sat)[late]))
-    rec.update({
-        "settling_time": ts,
-        "first_entry": res.first_entry(sc.eps_z),
-        "max_abs_xi": None if xi is None or not math.isfinite(xi) else xi,
-        "max_abs_xi_nominal": res.max_abs_xi_nominal,
-        "clamp_count": int(res.clamp_count),
-        "u_min": res.u_min, "u_max": res.u_max,
-        "saturated_fraction": res.saturated_fraction,
-        "expanded_unsaturated_fraction": res.expanded_unsaturated_fraction,
-        "t_end": horizon,
-        "bound": bound, "bound_kind": kind,
-        "settled_within_bound": bool(ts is not None and ts <= bound),
-        "bound_beyond_horizon": bool(bound > horizon),
-        "largest_expansion": expansion,
-        "saturated_after_startup": sat_late,
-        "expanded_after_startup": exp_late,
-        "expanded_without_saturation": expanded_unsat,
-        "verdicts": [{"name": v.name, "status": v.status, "detail": v.detail} for v in found],
-        "violations": violations,
-        "untested": untested,
-        "ok": not violations,
-        "nominal_ok": not violations and not expanded_unsat,
-    })
+    rec.update(
+        {
+            "settling_time": ts,
+            "first_entry": res.first_entry(sc.eps_z),
+            "max_abs_xi": None if xi is None or not math.isfinite(xi) else xi,
+            "max_abs_xi_nominal": res.max_abs_xi_nominal,
+            "clamp_count": int(res.clamp_count),
+            "u_min": res.u_min,
+            "u_max": res.u_max,
+            "saturated_fraction": res.saturated_fraction,
+            "expanded_unsaturated_fraction": res.expanded_unsaturated_fraction,
+            "t_end": horizon,
+            "bound": bound,
+            "bound_kind": kind,
+            "settled_within_bound": bool(ts is not None and ts <= bound),
+            "bound_beyond_horizon": bool(bound > horizon),
+            "largest_expansion": expansion,
+            "saturated_after_startup": sat_late,
+            "expanded_after_startup": exp_late,
+            "expanded_without_saturation": expanded_unsat,
+            "verdicts": [{"name": v.name, "status": v.status, "detail": v.detail} for v in found],
+            "violations": violations,
+            "untested": untested,
+            "ok": not violations,
+            "nominal_ok": not violations and not expanded_unsat,
+        }
+    )
     return rec
 
 
-def add_performance(records: Sequence[dict]) -> None:
+def add_performance(records: Sequence[dict[str, Any]]) -> None:
     """Sets each record's ``performance_ok`` against the fastest rate of its configuration."""
-    ref: dict[tuple[str, str], dict] = {}
+    ref: dict[tuple[str, str], dict[str, Any]] = {}
     for r in records:
         key = (r["scenario"], _config(r))
         if key not in ref or r["rate_hz"] > ref[key]["rate_hz"]:
@@ -204,11 +241,17 @@ def _task_cost(rate_hz: float) -> float:
     return rate_hz * (1.0 + 0.1 * substeps_for(dt))
 
 
-def sweep(names: Sequence[str] | None = None, variant: str = "code",
-          rates: Sequence[float] = RATES_HZ, discretizations: Sequence[str] = DISCRETIZATIONS,
-          limited: Sequence[bool] = (False, True), t_end: float | None = None,
-          jobs: int | None = None, progress: Any = None,
-          limit_factor: float = LIMIT_FACTOR) -> list[dict[str, Any]]:
+def sweep(
+    names: Sequence[str] | None = None,
+    variant: str = "code",
+    rates: Sequence[float] = RATES_HZ,
+    discretizations: Sequence[str] = DISCRETIZATIONS,
+    limited: Sequence[bool] = (False, True),
+    t_end: float | None = None,
+    jobs: int | None = None,
+    progress: Any = None,
+    limit_factor: float = LIMIT_FACTOR,
+) -> list[dict[str, Any]]:
     """Runs every combination; returns the records sorted by scenario, configuration and rate.
 
     ``jobs`` worker processes (default: the CPU count; 1 runs in-process);
@@ -219,13 +262,18 @@ def sweep(names: Sequence[str] | None = None, variant: str = "code",
     from famcc import scenarios
 
     names = list(names or scenarios.names())
-    tasks = [(n, variant, float(r), d, bool(lim), t_end, limit_factor)
-             for n in names for d in discretizations for lim in limited for r in rates]
-    tasks.sort(key=lambda a: -_task_cost(a[2]))       # longest first: better packing
+    tasks = [
+        (n, variant, float(r), d, bool(lim), t_end, limit_factor)
+        for n in names
+        for d in discretizations
+        for lim in limited
+        for r in rates
+    ]
+    tasks.sort(key=lambda a: -_task_cost(a[2]))  # longest first: better packing
     jobs = max(1, int(jobs or os.cpu_count() or 1))
     records = []
 
-    def label(rec: dict) -> str:
+    def label(rec: dict[str, Any]) -> str:
         tag = "OK" if rec["ok"] else "fail"
         lim = "+limits" if rec["limited"] else ""
         return f"{rec['scenario']} {rec['rate_hz']:g} Hz {rec['discretization']}{lim} ({tag})"
@@ -246,23 +294,30 @@ def sweep(names: Sequence[str] | None = None, variant: str = "code",
                     progress.step(label(rec), rec["runtime_s"])
     order = {n: i for i, n in enumerate(names)}
     dorder = {d: i for i, d in enumerate(discretizations)}
-    records.sort(key=lambda r: (order[r["scenario"]], dorder[r["discretization"]],
-                                r["limited"], r["rate_hz"]))
+    records.sort(
+        key=lambda r: (
+            order[r["scenario"]],
+            dorder[r["discretization"]],
+            r["limited"],
+            r["rate_hz"],
+        )
+    )
     add_performance(records)
     return records
 
 
-def _config(rec: dict) -> str:
-    return rec["discretization"] + (" + limits" if rec["limited"] else "")
+def _config(rec: dict[str, Any]) -> str:
+    return str(rec["discretization"]) + (" + limits" if rec["limited"] else "")
 
 
-def lowest_rates(records: Sequence[dict], key: str = "ok"
-                 ) -> dict[tuple[str, str], dict[str, Any]]:
+def lowest_rates(
+    records: Sequence[dict[str, Any]], key: str = "ok"
+) -> dict[tuple[str, str], dict[str, Any]]:
     """Per (scenario, configuration): the lowest rate from which every higher swept rate
     passes (``"from"``, None if even the highest fails) and the lowest passing rate at all
     (``"any"``). ``key`` is the verdict: ``"ok"``, ``"nominal_ok"`` or
     ``"performance_ok"`` (see the module's documentation)."""
-    groups: dict[tuple[str, str], list[dict]] = {}
+    groups: dict[tuple[str, str], list[dict[str, Any]]] = {}
     for r in records:
         groups.setdefault((r["scenario"], _config(r)), []).append(r)
     out = {}
@@ -298,7 +353,7 @@ def _seconds(v: float | None) -> str:
     return "never" if v is None else f"{v:.2f} s"
 
 
-def _cell(r: dict) -> str:
+def _cell(r: dict[str, Any]) -> str:
     if r["error"]:
         return "diverged"
     ts = r["settling_time"]
@@ -315,7 +370,9 @@ def _cell(r: dict) -> str:
     return body + marks
 
 
-def _lowest_table(low: dict, names: list[str], configs: list[str]) -> list[str]:
+def _lowest_table(
+    low: dict[tuple[str, str], Any], names: list[str], configs: list[str]
+) -> list[str]:
     lines = ["| scenario | " + " | ".join(configs) + " |", "|---|" + "---|" * len(configs)]
     for n in names:
         cells = []
@@ -329,21 +386,25 @@ def _lowest_table(low: dict, names: list[str], configs: list[str]) -> list[str]:
     return lines
 
 
-def _needed(low: dict, names: list[str], config: str) -> float | None:
+def _needed(low: dict[tuple[str, str], Any], names: list[str], config: str) -> float | None:
     """The rate every scenario needs with ``config`` (None if some never passes)."""
     per = [low.get((n, config), {}).get("from") for n in names]
     return None if any(v is None for v in per) else max(per)
 
 
-def question_rate(records: Sequence[dict]) -> float:
+def question_rate(records: Sequence[dict[str, Any]]) -> float:
     """The rate the report asks about: :data:`TARGET_HZ` when it was swept, else the
     lowest swept rate (the report speaks only of rates it ran)."""
     rates = {r["rate_hz"] for r in records}
     return float(TARGET_HZ) if TARGET_HZ in rates else float(min(rates))
 
 
-def _answer(records: Sequence[dict], lows: dict[str, dict], names: list[str],
-            configs: list[str]) -> list[str]:
+def _answer(
+    records: Sequence[dict[str, Any]],
+    lows: dict[str, dict[tuple[str, str], Any]],
+    names: list[str],
+    configs: list[str],
+) -> list[str]:
     target = question_rate(records)
     top = max(r["rate_hz"] for r in records)
     ok_low = lows["ok"]
@@ -352,20 +413,24 @@ def _answer(records: Sequence[dict], lows: dict[str, dict], names: list[str],
         today = {n: ok_low.get((n, "exact"), {}).get("from") for n in names}
         lines += [
             "- **Today** (exact discretization, no estimate limits) the scenarios keep their "
-            "guarantees from: " + ", ".join(f"{n} {_rate(today[n])}" for n in names)
+            "guarantees from: "
+            + ", ".join(f"{n} {_rate(today[n])}" for n in names)
             + f"; all of them together need {_rate(_needed(ok_low, names, 'exact'))}.",
             "",
         ]
     lines += [
-        ("Rate every scenario needs (lowest swept rate from which all faster rates pass), "
-         "per configuration and criterion:"),
+        (
+            "Rate every scenario needs (lowest swept rate from which all faster rates pass), "
+            "per configuration and criterion:"
+        ),
         "",
         "| configuration | " + " | ".join(label for _, label in CRITERIA) + " |",
         "|---|" + "---|" * len(CRITERIA),
     ]
     for c in configs:
-        lines.append(f"| {c} | " + " | ".join(_rate(_needed(lows[k], names, c))
-                                               for k, _ in CRITERIA) + " |")
+        lines.append(
+            f"| {c} | " + " | ".join(_rate(_needed(lows[k], names, c)) for k, _ in CRITERIA) + " |"
+        )
     lines.append("")
     verdicts = []
     for k, label in CRITERIA:
@@ -373,57 +438,78 @@ def _answer(records: Sequence[dict], lows: dict[str, dict], names: list[str],
         verdicts.append((label, good))
     g_ok, g_nom, g_perf = (v[1] for v in verdicts)
     if g_ok:
-        lines.append(f"- **By the guarantees as checked: yes.** At {target:g} Hz and every faster "
-                     "swept rate every "
-                     f"scenario keeps its guarantees with {', '.join(g_ok)}.")
+        lines.append(
+            f"- **By the guarantees as checked: yes.** At {target:g} Hz and every faster "
+            "swept rate every "
+            f"scenario keeps its guarantees with {', '.join(g_ok)}."
+        )
     else:
-        lines.append(f"- **By the guarantees as checked: no** configuration brings every "
-                     f"scenario down to {target:g} Hz.")
+        lines.append(
+            f"- **By the guarantees as checked: no** configuration brings every "
+            f"scenario down to {target:g} Hz."
+        )
     nom_text = "yes, with " + ", ".join(g_nom) if g_nom else "no"
     lines.append(
-        f"- **With the nominal constraint kept: {nom_text}.** " + ("" if g_nom else
-                   f"At {target:g} Hz, with every configuration, some run expands its bounds "
-                   "after the start-up while v is inside the limits: the sampled state reaches "
-                   "(within rho_e) or crosses the nominal boundary that Theorems 1-3 keep it "
-                   "inside, and only the flexible boundary keeps |xi~| < 1. Per "
-                   "configuration, the rates in the table above."))
+        f"- **With the nominal constraint kept: {nom_text}.** "
+        + (
+            ""
+            if g_nom
+            else f"At {target:g} Hz, with every configuration, some run expands its bounds "
+            "after the start-up while v is inside the limits: the sampled state reaches "
+            "(within rho_e) or crosses the nominal boundary that Theorems 1-3 keep it "
+            "inside, and only the flexible boundary keeps |xi~| < 1. Per "
+            "configuration, the rates in the table above."
+        )
+    )
     lines.append(
         f"- **At {target:g} Hz with the performance of the {top:g} Hz run kept: "
-        f"{'yes, with ' + ', '.join(g_perf) if g_perf else 'no'}.**")
+        f"{'yes, with ' + ', '.join(g_perf) if g_perf else 'no'}.**"
+    )
     perf = {c: _needed(lows["performance_ok"], names, c) for c in configs}
     reached = {c: v for c, v in perf.items() if v is not None}
     if reached:
         best = min(reached.values())
-        lines.append(f"- **Lowest rate at which every scenario passes all three: {best:g} Hz**, "
-                     f"with {', '.join(c for c, v in reached.items() if v == best)}.")
+        lines.append(
+            f"- **Lowest rate at which every scenario passes all three: {best:g} Hz**, "
+            f"with {', '.join(c for c, v in reached.items() if v == best)}."
+        )
     if "exact + limits" in configs and "exact" in configs:
-        changed = [n for n in names
-                   if any(lows[k].get((n, "exact")) != lows[k].get((n, "exact + limits"))
-                          for k, _ in CRITERIA)]
+        changed = [
+            n
+            for n in names
+            if any(
+                lows[k].get((n, "exact")) != lows[k].get((n, "exact + limits")) for k, _ in CRITERIA
+            )
+        ]
         lines.append(
             f"- **Estimate limits** change a lowest rate of {len(changed)} of {len(names)} "
             "scenarios with the exact discretization"
             + (f" ({', '.join(changed)})" if changed else "")
             + ". The estimates rarely exceed a few times the initial error, so the clip "
             "is mostly inactive; it trims the start-up peaking and keeps some slow loops from "
-            "blowing up, but it cannot remove the phase lag that sampling adds.")
+            "blowing up, but it cannot remove the phase lag that sampling adds."
+        )
     untested = [r for r in records if r["rate_hz"] == target and r["ok"] and r["untested"]]
     if untested:
         examples = ", ".join(f"{r['scenario']} {_config(r)}" for r in untested[:3])
         lines.append(
             f"- Caveat: {len(untested)} passing {target:g} Hz runs have untested claims "
             "(a bound beyond the horizon, or saturation returning sooner than T' after every "
-            f"episode; marked (u)), e.g. {examples}.")
+            f"episode; marked (u)), e.g. {examples}."
+        )
     return lines
 
 
-def _compare_table(records: Sequence[dict], names: list[str], configs: list[str],
-                   rate: float) -> list[str]:
+def _compare_table(
+    records: Sequence[dict[str, Any]], names: list[str], configs: list[str], rate: float
+) -> list[str]:
     """The target rate next to the fastest swept rate, per scenario and configuration."""
     top = max(r["rate_hz"] for r in records)
     by = {(r["scenario"], _config(r), r["rate_hz"]): r for r in records}
-    head = (f"| scenario | configuration | settling [s] at {rate:g} Hz / {top:g} Hz | "
-            f"max \\|xi~\\| | saturated | largest expansion | verdict at {rate:g} Hz |")
+    head = (
+        f"| scenario | configuration | settling [s] at {rate:g} Hz / {top:g} Hz | "
+        f"max \\|xi~\\| | saturated | largest expansion | verdict at {rate:g} Hz |"
+    )
     lines = [head, "|---|---|---|---|---|---|---|"]
     for n in names:
         for c in configs:
@@ -431,8 +517,9 @@ def _compare_table(records: Sequence[dict], names: list[str], configs: list[str]
             if a is None or b is None:
                 continue
             if a["error"]:
-                lines.append(f"| {n} | {c} | diverged / {_seconds(b['settling_time'])} | - | - "
-                             "| - | fails |")
+                lines.append(
+                    f"| {n} | {c} | diverged / {_seconds(b['settling_time'])} | - | - | - | fails |"
+                )
                 continue
 
             def pct(v: float | None) -> str:
@@ -456,12 +543,14 @@ def _compare_table(records: Sequence[dict], names: list[str], configs: list[str]
                 f"{_seconds(b['settling_time'])} | {xi_text(a['max_abs_xi'])} / "
                 f"{xi_text(b['max_abs_xi'])} | {pct(a['saturated_fraction'])} / "
                 f"{pct(b['saturated_fraction'])} | {exp(a['largest_expansion'])} / "
-                f"{exp(b['largest_expansion'])} | {verdict} |")
+                f"{exp(b['largest_expansion'])} | {verdict} |"
+            )
     return lines
 
 
-def write_sweep_report(records: Sequence[dict], out: str | Path, meta: dict,
-                       figure: bool = True) -> Path:
+def write_sweep_report(
+    records: Sequence[dict[str, Any]], out: str | Path, meta: dict[str, Any], figure: bool = True
+) -> Path:
     """Writes ``sweep.md``, ``sweep.json`` and ``sweep.png`` into ``out``; returns sweep.md."""
     from famcc import scenarios
 
@@ -474,12 +563,25 @@ def write_sweep_report(records: Sequence[dict], out: str | Path, meta: dict,
         add_performance(records)
     lows = {k: lowest_rates(records, k) for k, _ in CRITERIA}
     low = lows["ok"]
-    (out / "sweep.json").write_text(json.dumps(
-        {"meta": meta, "records": list(records),
-         "lowest_rates": [{"scenario": k[0], "configuration": k[1],
-                           **{f"{crit}_from": lows[crit][k]["from"] for crit, _ in CRITERIA},
-                           **{f"{crit}_any": lows[crit][k]["any"] for crit, _ in CRITERIA}}
-                          for k in low]}, indent=2) + "\n")
+    (out / "sweep.json").write_text(
+        json.dumps(
+            {
+                "meta": meta,
+                "records": list(records),
+                "lowest_rates": [
+                    {
+                        "scenario": k[0],
+                        "configuration": k[1],
+                        **{f"{crit}_from": lows[crit][k]["from"] for crit, _ in CRITERIA},
+                        **{f"{crit}_any": lows[crit][k]["any"] for crit, _ in CRITERIA},
+                    }
+                    for k in low
+                ],
+            },
+            indent=2,
+        )
+        + "\n"
+    )
     if figure:
         from famcc import plot
 
@@ -491,40 +593,53 @@ def write_sweep_report(records: Sequence[dict], out: str | Path, meta: dict,
     for n in names:
         sc = scenarios.paper(n, variant)
         z0 = initial_error(sc)
-        lim_rows.append(f"| {n} | ({', '.join(f'{v:.3g}' for v in z0)}) | "
-                        f"({', '.join(f'{v:.3g}' for v in estimate_limits(sc, factor))}) |")
-    wall = (f", {meta['runtime_s']:.0f} s wall time on {meta.get('jobs', 1)} process(es)"
-            if meta.get("runtime_s") else "")
+        lim_rows.append(
+            f"| {n} | ({', '.join(f'{v:.3g}' for v in z0)}) | "
+            f"({', '.join(f'{v:.3g}' for v in estimate_limits(sc, factor))}) |"
+        )
+    wall = (
+        f", {meta['runtime_s']:.0f} s wall time on {meta.get('jobs', 1)} process(es)"
+        if meta.get("runtime_s")
+        else ""
+    )
     lines = [
         "# famcc sweep: settling time and max |xi~| against the sample rate",
         "",
-        (f"Variant `{variant}`, horizon {meta.get('t_end') or 10:g} s (saturated runs are "
-         "extended until their recovery claims can fall due), rates "
-         f"{', '.join(f'{r:g}' for r in rates)} Hz, {len(records)} runs{wall}."),
+        (
+            f"Variant `{variant}`, horizon {meta.get('t_end') or 10:g} s (saturated runs are "
+            "extended until their recovery claims can fall due), rates "
+            f"{', '.join(f'{r:g}' for r in rates)} Hz, {len(records)} runs{wall}."
+        ),
         "",
-        ("Each run replaces the scenario's differentiator by "
-         "`famcc.HighGain(mu, a, discretization=..., limits=...)` (same mu and a) and calls "
-         "`scenario.run(dt=1/rate, substeps=max(1, ceil(dt / 1e-4)))`, so the plant's RK4 step "
-         "is at most 0.1 ms at every rate (10 substeps at 1 kHz, as in `famcc reproduce`). "
-         "A run **keeps its guarantees** when none of the claims of `scenario.verdicts` "
-         "fails (docs/design.md §8): for the scenarios designed without saturation, settling "
-         "within max(T_e, T_s) + T', no saturation and nominal bounds after the first "
-         f"{STARTUP:g} s; for the saturated ones, settled by 10 s, and |z1| < 0.1 and nominal "
-         "bounds again after every saturation episode whose recovery bound falls due. "
-         "Untested claims are marked (u), never counted as held. Loops that blow up fail."),
+        (
+            "Each run replaces the scenario's differentiator by "
+            "`famcc.HighGain(mu, a, discretization=..., limits=...)` (same mu and a) and calls "
+            "`scenario.run(dt=1/rate, substeps=max(1, ceil(dt / 1e-4)))`, so the plant's RK4 step "
+            "is at most 0.1 ms at every rate (10 substeps at 1 kHz, as in `famcc reproduce`). "
+            "A run **keeps its guarantees** when none of the claims of `scenario.verdicts` "
+            "fails (docs/design.md §8): for the scenarios designed without saturation, settling "
+            "within max(T_e, T_s) + T', no saturation and nominal bounds after the first "
+            f"{STARTUP:g} s; for the saturated ones, settled by 10 s, and |z1| < 0.1 and nominal "
+            "bounds again after every saturation episode whose recovery bound falls due. "
+            "Untested claims are marked (u), never counted as held. Loops that blow up fail."
+        ),
         "",
-        ("Two stricter verdicts: **nominal constraint**: also, after the first "
-         f"{STARTUP:g} s, the bounds are never expanded while v is inside the limits (the "
-         "accuracy given up with headroom left). The flexible bounds open as soon as the state "
-         "comes within rho_e of the nominal boundary and keep |xi~| < 1 by construction, so "
-         "|xi~| < 1 alone does not show that sampling left the nominal constraint intact. "
-         "**Performance**: settles no later than 1.1 x + 0.25 s the fastest swept rate's "
-         "settling time (same configuration) and saturates at most 5 percentage points more "
-         "often."),
+        (
+            "Two stricter verdicts: **nominal constraint**: also, after the first "
+            f"{STARTUP:g} s, the bounds are never expanded while v is inside the limits (the "
+            "accuracy given up with headroom left). The flexible bounds open as soon as the state "
+            "comes within rho_e of the nominal boundary and keep |xi~| < 1 by construction, so "
+            "|xi~| < 1 alone does not show that sampling left the nominal constraint intact. "
+            "**Performance**: settles no later than 1.1 x + 0.25 s the fastest swept rate's "
+            "settling time (same configuration) and saturates at most 5 percentage points more "
+            "often."
+        ),
         "",
-        ("Estimate limits (`+ limits`): the estimates fed to the law are clipped to "
-         f"{factor:g} x max(|z_i(0)|, 1), numbers a user knows from the initial state and "
-         "the reference without simulating:"),
+        (
+            "Estimate limits (`+ limits`): the estimates fed to the law are clipped to "
+            f"{factor:g} x max(|z_i(0)|, 1), numbers a user knows from the initial state and "
+            "the reference without simulating:"
+        ),
         "",
         "| scenario | z(0) | limits |",
         "|---|---|---|",
@@ -536,37 +651,51 @@ def write_sweep_report(records: Sequence[dict], out: str | Path, meta: dict,
         "",
         "## Lowest sample rate per scenario",
         "",
-        ("Lowest rate from which every faster swept rate passes; in brackets the lowest "
-         "passing rate at all, when lower (isolated passes)."),
+        (
+            "Lowest rate from which every faster swept rate passes; in brackets the lowest "
+            "passing rate at all, when lower (isolated passes)."
+        ),
         "",
     ]
     for k, label in CRITERIA:
         lines += [f"**{label}**", "", *_lowest_table(lows[k], names, configs), ""]
     lines += [
-        *([f"## {question_rate(records):g} Hz next to {max(rates):g} Hz", "",
-           *_compare_table(records, names, configs, question_rate(records))]
-          if question_rate(records) < max(rates) else []),
+        *(
+            [
+                f"## {question_rate(records):g} Hz next to {max(rates):g} Hz",
+                "",
+                *_compare_table(records, names, configs, question_rate(records)),
+            ]
+            if question_rate(records) < max(rates)
+            else []
+        ),
         "",
         "![sweep](sweep.png)",
         "",
         "## All runs",
         "",
-        ("Cells: settling time to |z1| < 0.1 [s] / max |xi~| (`1-3e-04` means 1 - 3e-4); "
-         "**x**: does not keep its guarantees (reasons in `sweep.json`); (n): keeps them but "
-         "does not keep the nominal bounds; (p): keeps both but settles later or saturates more "
-         "than at the fastest rate; (u): some claim untested (a bound beyond the horizon, or "
-         "saturation returning sooner than T'); \"never\": not settled by the end; "
-         "\"diverged\": the loop blew up."),
+        (
+            "Cells: settling time to |z1| < 0.1 [s] / max |xi~| (`1-3e-04` means 1 - 3e-4); "
+            "**x**: does not keep its guarantees (reasons in `sweep.json`); (n): keeps them but "
+            "does not keep the nominal bounds; (p): keeps both but settles later or saturates more "
+            "than at the fastest rate; (u): some claim untested (a bound beyond the horizon, or "
+            'saturation returning sooner than T\'); "never": not settled by the end; '
+            '"diverged": the loop blew up.'
+        ),
         "",
     ]
     for n in names:
-        lines += [f"### {n}", "",
-                  "| configuration | " + " | ".join(f"{r:g} Hz" for r in rates) + " |",
-                  "|---|" + "---|" * len(rates)]
+        lines += [
+            f"### {n}",
+            "",
+            "| configuration | " + " | ".join(f"{r:g} Hz" for r in rates) + " |",
+            "|---|" + "---|" * len(rates),
+        ]
         for c in configs:
             row = {r["rate_hz"]: r for r in records if r["scenario"] == n and _config(r) == c}
-            lines.append(f"| {c} | " + " | ".join(_cell(row[r]) if r in row else ""
-                                                   for r in rates) + " |")
+            lines.append(
+                f"| {c} | " + " | ".join(_cell(row[r]) if r in row else "" for r in rates) + " |"
+            )
         lines.append("")
     md = out / "sweep.md"
     md.write_text("\n".join(lines))

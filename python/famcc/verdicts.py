@@ -134,6 +134,7 @@ def count(verdicts: Sequence[Verdict]) -> dict[str, int]:
 # helpers
 # ---------------------------------------------------------------------------
 
+
 def _t(x: float | None) -> str:
     return "never" if x is None else f"{x:.3f} s"
 
@@ -148,8 +149,9 @@ def _last_bound(result: Any, settle_time: float, t_prime: float) -> tuple[float,
     return t_e, max(t_e, settle_time) + t_prime
 
 
-def recovery_windows(result: Any, settle_time: float, t_prime: float
-                     ) -> list[tuple[float, float, float]]:
+def recovery_windows(
+    result: Any, settle_time: float, t_prime: float
+) -> list[tuple[float, float, float]]:
     """``(T_e, due, until)`` for every saturation episode.
 
     ``due = max(T_e, T_s) + T'`` is the episode's recovery bound and ``until``
@@ -166,7 +168,7 @@ def recovery_windows(result: Any, settle_time: float, t_prime: float
         saturated_at_end = i + 1 == len(episodes) and bool(result.saturated[-1])
         due = max(t_e, settle_time) + t_prime
         if saturated_at_end:
-            due = horizon + t_prime          # the episode never ended in this run
+            due = horizon + t_prime  # the episode never ended in this run
         out.append((t_e, due, until))
     return out
 
@@ -180,6 +182,7 @@ def _is_due(window: tuple[float, float, float], horizon: float) -> bool:
 # claims of a run designed without saturation
 # ---------------------------------------------------------------------------
 
+
 def settling(result: Any, eps: float, settle_time: float, t_prime: float) -> Verdict:
     """``|z1| < eps`` for good from ``max(T_e, T_s) + T'`` on (Corollaries 1-3)."""
     t_e, bound = _last_bound(result, settle_time, t_prime)
@@ -188,13 +191,20 @@ def settling(result: Any, eps: float, settle_time: float, t_prime: float) -> Ver
     where = f"max(T_e, T_s) + T' = max({t_e:.3g}, {settle_time:g}) + {t_prime:.3g}"
     claim = f"|z1| < {eps:g} for good from {where} = {bound:.3g} s on"
     if bound > horizon:
-        return Verdict("settling", claim, "untested",
-                       f"the bound {bound:.3g} s lies beyond the horizon {horizon:g} s "
-                       f"(settled at {_t(ts)})")
+        return Verdict(
+            "settling",
+            claim,
+            "untested",
+            f"the bound {bound:.3g} s lies beyond the horizon {horizon:g} s (settled at {_t(ts)})",
+        )
     if ts is not None and ts <= bound:
         return Verdict("settling", claim, "held", f"settled at {ts:.3f} s")
-    return Verdict("settling", claim, "failed",
-                   "never settled" if ts is None else f"settled only at {ts:.3f} s")
+    return Verdict(
+        "settling",
+        claim,
+        "failed",
+        "never settled" if ts is None else f"settled only at {ts:.3f} s",
+    )
 
 
 def unsaturated(result: Any, startup: float = STARTUP) -> Verdict:
@@ -207,9 +217,13 @@ def unsaturated(result: Any, startup: float = STARTUP) -> Verdict:
     if not sat.any():
         return Verdict("unsaturated", claim, "held", "never outside after the start-up")
     first = float(np.asarray(result.t)[late][int(np.argmax(sat))])
-    return Verdict("unsaturated", claim, "failed",
-                   f"outside the limits at {100 * float(np.mean(sat)):.1f} % of the samples "
-                   f"after the start-up, first at {first:.3f} s")
+    return Verdict(
+        "unsaturated",
+        claim,
+        "failed",
+        f"outside the limits at {100 * float(np.mean(sat)):.1f} % of the samples "
+        f"after the start-up, first at {first:.3f} s",
+    )
 
 
 def nominal(result: Any, startup: float = STARTUP) -> Verdict:
@@ -222,18 +236,26 @@ def nominal(result: Any, startup: float = STARTUP) -> Verdict:
     bad = exp[late]
     if not bad.any():
         xi_nom = result.xi_nominal
-        tail = ("" if xi_nom is None
-                else f" (max nominal |xi| {float(np.max(np.abs(xi_nom[late]))):.3f})")
+        tail = (
+            ""
+            if xi_nom is None
+            else f" (max nominal |xi| {float(np.max(np.abs(xi_nom[late]))):.3f})"
+        )
         return Verdict("nominal", claim, "held", "never expanded after the start-up" + tail)
     first = float(np.asarray(result.t)[late][int(np.argmax(bad))])
-    return Verdict("nominal", claim, "failed",
-                   f"expanded at {100 * float(np.mean(bad)):.1f} % of the samples after the "
-                   f"start-up, first at {first:.3f} s, up to {result.largest_expansion:.3g}x")
+    return Verdict(
+        "nominal",
+        claim,
+        "failed",
+        f"expanded at {100 * float(np.mean(bad)):.1f} % of the samples after the "
+        f"start-up, first at {first:.3f} s, up to {result.largest_expansion:.3g}x",
+    )
 
 
 # ---------------------------------------------------------------------------
 # claims of a run with saturation
 # ---------------------------------------------------------------------------
+
 
 def settles(result: Any, eps: float, within: float, known_failure: bool = False) -> Verdict:
     """The run is settled by ``within`` seconds (the paper's horizon).
@@ -256,13 +278,19 @@ def settles(result: Any, eps: float, within: float, known_failure: bool = False)
     if last + 1 < z1.size:
         return Verdict("settles", claim, "held", f"settled at {float(t[last + 1]):.3f} s")
     sat = 100 * float(np.mean(np.asarray(result.saturated)[upto]))
-    return Verdict("settles", claim, "failed",
-                   f"|z1| = {float(z1[-1]):.3g} at {horizon:g} s (saturated {sat:.0f} % of the "
-                   "time until then)", known=known_failure)
+    return Verdict(
+        "settles",
+        claim,
+        "failed",
+        f"|z1| = {float(z1[-1]):.3g} at {horizon:g} s (saturated {sat:.0f} % of the "
+        "time until then)",
+        known=known_failure,
+    )
 
 
-def _windows_verdict(name: str, claim: str, result: Any, settle_time: float, t_prime: float,
-                     bad_in_window: Any) -> Verdict:
+def _windows_verdict(
+    name: str, claim: str, result: Any, settle_time: float, t_prime: float, bad_in_window: Any
+) -> Verdict:
     horizon = float(result.t[-1])
     windows = recovery_windows(result, settle_time, t_prime)
     if not windows:
@@ -270,30 +298,40 @@ def _windows_verdict(name: str, claim: str, result: Any, settle_time: float, t_p
     due = [w for w in windows if _is_due(w, horizon)]
     if not due:
         gaps = [w[2] - w[0] for w in windows]
-        return Verdict(name, claim, "untested",
-                       f"no claim fell due: after each of the {len(windows)} episodes "
-                       f"saturation returned (or the run ended) within {max(gaps):.3g} s, "
-                       f"sooner than T' = {t_prime:.3g} s")
+        return Verdict(
+            name,
+            claim,
+            "untested",
+            f"no claim fell due: after each of the {len(windows)} episodes "
+            f"saturation returned (or the run ended) within {max(gaps):.3g} s, "
+            f"sooner than T' = {t_prime:.3g} s",
+        )
     t = np.asarray(result.t)
     failures = []
     for t_e, d, until in due:
         mask = (t >= d) & ((t < until) | (until >= horizon))
         why = bad_in_window(mask)
         if why:
-            failures.append(f"after the episode ending at {t_e:.3f} s: {why} in "
-                            f"[{d:.3f}, {until:.3f}] s")
+            failures.append(
+                f"after the episode ending at {t_e:.3f} s: {why} in [{d:.3f}, {until:.3f}] s"
+            )
     n = len(due)
     if failures:
-        return Verdict(name, claim, "failed",
-                       f"{len(failures)} of {n} due windows fail; " + "; ".join(failures[:2]))
-    return Verdict(name, claim, "held",
-                   f"all {n} due windows hold; {len(windows) - n} not due")
+        return Verdict(
+            name,
+            claim,
+            "failed",
+            f"{len(failures)} of {n} due windows fail; " + "; ".join(failures[:2]),
+        )
+    return Verdict(name, claim, "held", f"all {n} due windows hold; {len(windows) - n} not due")
 
 
 def recovery(result: Any, eps: float, settle_time: float, t_prime: float) -> Verdict:
     """``|z1| < eps`` from each episode's ``max(T_e, T_s) + T'`` until the next episode."""
-    claim = (f"|z1| < {eps:g} regained by max(T_e, T_s) + T' after every saturation "
-             "episode, until the next")
+    claim = (
+        f"|z1| < {eps:g} regained by max(T_e, T_s) + T' after every saturation "
+        "episode, until the next"
+    )
     z1 = np.abs(np.asarray(result.z1, dtype=float))
 
     def bad(mask: np.ndarray) -> str:

@@ -5,7 +5,7 @@ compiled :class:`famcc.Controller` (docs/design.md §3), written independently f
 the paper's definitions with the ``math`` module only: no call into
 ``famcc._core`` and no NumPy anywhere. It exists to
 check the compiled core (``tests/test_reference.py``) and as a readable
-statement of the law; it is 50-100 times slower than the compiled step.
+statement of the law (it lives with the tests and is not shipped); it is 50-100 times slower than the compiled step.
 
 Scope: float64, orders 1-3, every feedback law (Linear, FiniteTime, FixedTime,
 VariableExponent, MoulayDiscontinuous), both skews (SSMD, NSMD), the three
@@ -52,7 +52,7 @@ approximant of the augmented matrix in float64; the two agree to a few ulps
 while ``dt <~ mu``.)
 
 >>> import famcc
->>> from famcc.reference import ReferenceController
+>>> from oracle.reference import ReferenceController
 >>> sc = famcc.scenarios.paper("finite-time")
 >>> ref = ReferenceController.from_kwargs(dt=1e-3, **sc.controller_kwargs)
 >>> ctrl = sc.controller(1e-3)
@@ -256,8 +256,7 @@ class _FixedTime(_Law):
         return -(self.alpha * _spow(s, self.p) + self.beta * _spow(s, self.q))
 
     def value_slope(self, s: float) -> tuple[float, float]:
-        return (self.value(s),
-                -(self.alpha * _dspow(s, self.p) + self.beta * _dspow(s, self.q)))
+        return (self.value(s), -(self.alpha * _dspow(s, self.p) + self.beta * _dspow(s, self.q)))
 
 
 class _VarExponent(_Law):
@@ -509,11 +508,9 @@ def discretize_hgd(mu: float, a: Sequence[float], dt: float, method: str = "exac
             rhs = [[eye[i][j] + half * tau * m0[i][j] for j in range(n)] for i in range(n)]
             phi0 = _solve(lhs, rhs)
         else:
-            raise ValueError(
-                f"discretization must be 'exact', 'euler' or 'tustin', got {method!r}")
+            raise ValueError(f"discretization must be 'exact', 'euler' or 'tustin', got {method!r}")
         g0 = [eye[i][0] - phi0[i][0] for i in range(n)]
-        phi = tuple(tuple(float(phi0[i][j] * mu_d ** (j - i)) for j in range(n))
-                    for i in range(n))
+        phi = tuple(tuple(float(phi0[i][j] * mu_d ** (j - i)) for j in range(n)) for i in range(n))
         gamma = tuple(float(g0[i] * mu_d ** (-i)) for i in range(n))
     return phi, gamma
 
@@ -547,8 +544,11 @@ class ReferenceDiagnostics:
             setattr(self, k, kw[k])
 
     def __repr__(self) -> str:
-        return ("ReferenceDiagnostics(" + ", ".join(f"{k}={getattr(self, k)!r}"
-                                                    for k in self.__slots__) + ")")
+        return (
+            "ReferenceDiagnostics("
+            + ", ".join(f"{k}={getattr(self, k)!r}" for k in self.__slots__)
+            + ")"
+        )
 
 
 # ---------------------------------------------------------------------------
@@ -569,13 +569,26 @@ class ReferenceController:
     ``estimate``.
     """
 
-    def __init__(self, order: int, dt: float, feedback: Any = None, *, skew: Any = None,
-                 constraint: str = "longitudinal", eps: Any, settle_time: float = 1.0,
-                 k0: float = 2.0, k_u: float, gamma: str = "log", rho_e: Any = "auto",
-                 differentiator: Any = "auto", latch: str = "paper",
-                 transition: str = "exponential",
-                 initial_derivatives: Sequence[float] | None = None,
-                 dtype: str = "float64") -> None:
+    def __init__(
+        self,
+        order: int,
+        dt: float,
+        feedback: Any = None,
+        *,
+        skew: Any = None,
+        constraint: str = "longitudinal",
+        eps: Any,
+        settle_time: float = 1.0,
+        k0: float = 2.0,
+        k_u: float,
+        gamma: str = "log",
+        rho_e: Any = "auto",
+        differentiator: Any = "auto",
+        latch: str = "paper",
+        transition: str = "exponential",
+        initial_derivatives: Sequence[float] | None = None,
+        dtype: str = "float64",
+    ) -> None:
         if order not in (1, 2, 3):
             raise ValueError(f"order must be 1, 2 or 3 in the reference (got {order})")
         if dtype != "float64":
@@ -593,12 +606,15 @@ class ReferenceController:
             raise ValueError(f"feedback and skew must have order - 1 = {n} entries")
         self.laws = [_SkewedLaw(_law_from(h), sk) for h, sk in zip(laws, skews)]
         if order == 3 and self.laws[0].singular:
-            raise ValueError("stage 1: skew must be Nonsingular (NSMD) for a power law "
-                             "below 1 at order 3 (its derivative is needed)")
+            raise ValueError(
+                "stage 1: skew must be Nonsingular (NSMD) for a power law "
+                "below 1 at order 3 (its derivative is needed)"
+            )
         # -- constraint and envelopes --
         if constraint not in ("longitudinal", "lateral", "oblique"):
-            raise ValueError(f"constraint must be longitudinal, lateral or oblique "
-                             f"(got {constraint!r})")
+            raise ValueError(
+                f"constraint must be longitudinal, lateral or oblique (got {constraint!r})"
+            )
         if order == 1 and constraint != "longitudinal":
             raise ValueError("constraint must be longitudinal at order 1")
         self.constraint = constraint
@@ -624,8 +640,7 @@ class ReferenceController:
             if rho_e != "auto":
                 raise ValueError(f"rho_e must be a float, 'auto' or None (got {rho_e!r})")
             # 0.01, or a tenth of the smallest final width when that is smaller
-            smallest = {"longitudinal": eps_y, "lateral": eps_x}.get(constraint,
-                                                                     min(eps_x, eps_y))
+            smallest = {"longitudinal": eps_y, "lateral": eps_x}.get(constraint, min(eps_x, eps_y))
             rho_e = min(0.01, 0.1 * smallest)
         self.rho_e = None if rho_e is None else float(rho_e)
         if latch not in ("paper", "authors"):
@@ -699,8 +714,16 @@ class ReferenceController:
     def state(self) -> list:
         """``[started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, zhat...]``
         (the layout of ``famcc.Controller.state()``)."""
-        return [1.0 if self._started else 0.0, self._t_base, float(self._k), self._rho0_x,
-                self._rho0_y, float(self._clamps), self._last_v, *self._zhat]
+        return [
+            1.0 if self._started else 0.0,
+            self._t_base,
+            float(self._k),
+            self._rho0_x,
+            self._rho0_y,
+            float(self._clamps),
+            self._last_v,
+            *self._zhat,
+        ]
 
     def set_state(self, v: Sequence[float]) -> None:
         """Continues from a vector returned by ``state()`` (either implementation's)."""
@@ -721,9 +744,19 @@ class ReferenceController:
         if d is None:
             z = [0.0] * self.order
             d = {
-                "t": 0.0, "xi": 0.0, "xi_nominal": 0.0, "s": 0.0, "stages": z, "s_prev": 0.0,
-                "ds_prev": 0.0, "bounds": (0.0, 0.0), "nominal_bounds": (0.0, 0.0), "z_hat": z,
-                "expanded": False, "saturation_gap": None, "clamp_count": self._clamps,
+                "t": 0.0,
+                "xi": 0.0,
+                "xi_nominal": 0.0,
+                "s": 0.0,
+                "stages": z,
+                "s_prev": 0.0,
+                "ds_prev": 0.0,
+                "bounds": (0.0, 0.0),
+                "nominal_bounds": (0.0, 0.0),
+                "z_hat": z,
+                "expanded": False,
+                "saturation_gap": None,
+                "clamp_count": self._clamps,
                 "v": self._last_v,
             }
         return ReferenceDiagnostics(**d)
@@ -776,12 +809,10 @@ class ReferenceController:
         if latch:
             if kind != "longitudinal":
                 # s_x0 = |h_v(ds_{n-1}) - s_{n-1}|
-                self._new_rho0_x = self._rho0(s_prev - self._x_c(s_prev, ds_prev, None),
-                                              self.eps_x)
+                self._new_rho0_x = self._rho0(s_prev - self._x_c(s_prev, ds_prev, None), self.eps_x)
             else:
                 self._new_rho0_x = self._rho0_x
-            self._new_rho0_y = (self._rho0(s, self.eps_y) if kind != "lateral"
-                                else self._rho0_y)
+            self._new_rho0_y = self._rho0(s, self.eps_y) if kind != "lateral" else self._rho0_y
             rho0_x, rho0_y = self._new_rho0_x, self._new_rho0_y
         else:
             rho0_x, rho0_y = self._rho0_x, self._rho0_y
@@ -818,10 +849,20 @@ class ReferenceController:
             g = xi / ((1.0 + xi) * (1.0 - xi))
         v = -self.k_u * g
         return {
-            "t": t, "xi": xi, "xi_nominal": xi_nominal, "s": s, "stages": stages,
-            "s_prev": s_prev, "ds_prev": ds_prev, "bounds": (factor * x_u, factor * y_u),
-            "nominal_bounds": (x_u, y_u), "z_hat": list(z), "expanded": factor > 1.0,
-            "saturation_gap": None, "clamp_count": clamps, "v": v,
+            "t": t,
+            "xi": xi,
+            "xi_nominal": xi_nominal,
+            "s": s,
+            "stages": stages,
+            "s_prev": s_prev,
+            "ds_prev": ds_prev,
+            "bounds": (factor * x_u, factor * y_u),
+            "nominal_bounds": (x_u, y_u),
+            "z_hat": list(z),
+            "expanded": factor > 1.0,
+            "saturation_gap": None,
+            "clamp_count": clamps,
+            "v": v,
         }
 
     # -- stepping ---------------------------------------------------------------
@@ -903,5 +944,7 @@ class ReferenceController:
         return v
 
     def __repr__(self) -> str:
-        return (f"ReferenceController(order={self.order}, dt={self.dt!r}, "
-                f"constraint={self.constraint!r}, k_u={self.k_u!r})")
+        return (
+            f"ReferenceController(order={self.order}, dt={self.dt!r}, "
+            f"constraint={self.constraint!r}, k_u={self.k_u!r})"
+        )

@@ -9,7 +9,7 @@ Examples
 --------
 >>> import numpy as np
 >>> from famcc.plants import second_order
->>> from famcc.simulate import simulate
+>>> from famcc.simulation import simulate
 >>> class PD:                        # any object with dt, order and step() works
 ...     dt, order = 1e-3, 2
 ...     def __init__(self):
@@ -189,8 +189,11 @@ class SimResult:
 
     @staticmethod
     def _check_eps(eps: float) -> float:
-        if not (isinstance(eps, (int, float, np.integer, np.floating)) and eps > 0
-                and math.isfinite(eps)):
+        if not (
+            isinstance(eps, (int, float, np.integer, np.floating))
+            and eps > 0
+            and math.isfinite(eps)
+        ):
             raise ValueError(f"eps must be a finite number > 0, got {eps!r}")
         return float(eps)
 
@@ -209,7 +212,7 @@ class SimResult:
         0.0 when every sample is inside; None when the last sample is outside.
         """
         eps = self._check_eps(eps)
-        outside = np.flatnonzero(~(np.abs(self.z1) < eps))   # NaN counts as outside
+        outside = np.flatnonzero(~(np.abs(self.z1) < eps))  # NaN counts as outside
         if outside.size == 0:
             return 0.0
         last = int(outside[-1])
@@ -298,7 +301,7 @@ class SimResult:
             return []
         edges = np.diff(np.concatenate(([0], sat, [0])))
         starts = np.flatnonzero(edges == 1)
-        stops = np.flatnonzero(edges == -1)          # index after the last saturated one
+        stops = np.flatnonzero(edges == -1)  # index after the last saturated one
         t = np.asarray(self.t)
         out = []
         for a, b in zip(starts, stops):
@@ -347,7 +350,7 @@ class SimResult:
         b = np.asarray(self.bounds, dtype=float)
         nb = np.asarray(self.nominal_bounds, dtype=float)
         equal = np.all(np.isclose(b, nb, rtol=1e-12, atol=0.0), axis=1)
-        after = np.flatnonzero(equal[expanded[-1] + 1:])
+        after = np.flatnonzero(equal[expanded[-1] + 1 :])
         if after.size == 0:
             return None
         return float(self.t[expanded[-1] + 1 + after[0]])
@@ -395,8 +398,9 @@ def _rk4(plant: Any, t0: float, x: np.ndarray, u: float, h: float, steps: int) -
     return x
 
 
-def _rk4_fast(rhs: Callable[..., Sequence[float]], t0: float, x: list[float], u: float,
-              h: float, steps: int) -> list[float]:
+def _rk4_fast(
+    rhs: Callable[..., Sequence[float]], t0: float, x: list[float], u: float, h: float, steps: int
+) -> list[float]:
     """The same RK4 on plain lists of floats, for plants offering ``rhs_fast``."""
     half, sixth = 0.5 * h, h / 6.0
     for j in range(steps):
@@ -405,20 +409,25 @@ def _rk4_fast(rhs: Callable[..., Sequence[float]], t0: float, x: list[float], u:
         k2 = rhs(t + half, [a + half * b for a, b in zip(x, k1)], u)
         k3 = rhs(t + half, [a + half * b for a, b in zip(x, k2)], u)
         k4 = rhs(t + h, [a + h * b for a, b in zip(x, k3)], u)
-        x = [a + sixth * (b1 + 2.0 * (b2 + b3) + b4)
-             for a, b1, b2, b3, b4 in zip(x, k1, k2, k3, k4)]
+        x = [
+            a + sixth * (b1 + 2.0 * (b2 + b3) + b4) for a, b1, b2, b3, b4 in zip(x, k1, k2, k3, k4)
+        ]
     return x
 
 
 def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
-        value, bool
-    )
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
 
 
-def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
-             u_limits: Sequence[float] | None = None, substeps: int = 10,
-             record: bool = True) -> SimResult:
+def simulate(
+    plant: Any,
+    controller: Any,
+    t_end: float,
+    reference: Any = None,
+    u_limits: Sequence[float] | None = None,
+    substeps: int = 10,
+    record: bool = True,
+) -> SimResult:
     """Run a sampled-and-held closed loop and record it.
 
     Parameters
@@ -501,9 +510,7 @@ def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
         raise ValueError("plant must have an integer order >= 1 and an rhs(t, x, u) method")
     n = int(n)
     if controller.order != n:
-        raise ValueError(
-            f"controller.order ({controller.order}) must equal the plant order ({n})"
-        )
+        raise ValueError(f"controller.order ({controller.order}) must equal the plant order ({n})")
     if record and not hasattr(controller, "diagnostics"):
         raise ValueError("controller has no attribute 'diagnostics'; pass record=False")
     if not _is_number(t_end) or not (math.isfinite(t_end) and t_end > 0):
@@ -541,8 +548,7 @@ def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
     negfg = np.full(K, np.nan) if has_fg else None
     if record:
         zh_arr = np.full((K, n), np.nan)
-        xi_arr, s_arr, sp_arr, dsp_arr, xin_arr, fac_arr = (np.full(K, np.nan)
-                                                            for _ in range(6))
+        xi_arr, s_arr, sp_arr, dsp_arr, xin_arr, fac_arr = (np.full(K, np.nan) for _ in range(6))
         b_arr = np.full((K, 2), np.nan)
         nb_arr = np.full((K, 2), np.nan)
         ex_arr = np.zeros(K, dtype=bool)
@@ -613,8 +619,19 @@ def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
                     )
             u_prev = u
 
-    result = SimResult(t=t_arr, y=y_arr, y_d=yd_arr, x=x_arr, z=z_arr, v=v_arr, u=u_arr,
-                       dt=dt, u_limits=limits, clamp_count=clamp_count, neg_f_over_g=negfg)
+    result = SimResult(
+        t=t_arr,
+        y=y_arr,
+        y_d=yd_arr,
+        x=x_arr,
+        z=z_arr,
+        v=v_arr,
+        u=u_arr,
+        dt=dt,
+        u_limits=limits,
+        clamp_count=clamp_count,
+        neg_f_over_g=negfg,
+    )
     if record:
         result.z_hat, result.xi, result.s = zh_arr, xi_arr, s_arr
         result.s_prev, result.ds_prev = sp_arr, dsp_arr
@@ -623,9 +640,3 @@ def simulate(plant: Any, controller: Any, t_end: float, reference: Any = None,
         result.xi_nominal = None if np.all(np.isnan(xin_arr)) else xin_arr
         result.expansion = None if np.all(np.isnan(fac_arr)) else fac_arr
     return result
-
-
-# ``famcc`` may re-export the function as ``famcc.simulate``, shadowing this module's
-# name; attaching the helpers keeps ``famcc.simulate.Sine`` and friends working.
-simulate.Sine = Sine  # type: ignore[attr-defined]
-simulate.SimResult = SimResult  # type: ignore[attr-defined]
