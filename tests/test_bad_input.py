@@ -314,7 +314,7 @@ CONFIG_ERRORS = [
 
 
 @pytest.mark.parametrize("case", CONFIG_ERRORS, ids=[c[0] for c in CONFIG_ERRORS])
-def test_config_errors_name_the_parameter(pair, case):
+def test_config_errors_name_the_parameter(case):
     _, build, name = case
     with pytest.raises(famcc.ConfigError) as info:
         build()
@@ -364,7 +364,7 @@ UNKNOWN_KEYWORDS = [
 
 
 @pytest.mark.parametrize("case", UNKNOWN_KEYWORDS, ids=[c[0] for c in UNKNOWN_KEYWORDS])
-def test_unknown_keywords_raise_type_error_naming_the_keyword(pair, case):
+def test_unknown_keywords_raise_type_error_naming_the_keyword(case):
     _, call, name = case
     with pytest.raises(TypeError, match=rf"unexpected keyword argument '{name}'"):
         call()
@@ -407,7 +407,7 @@ WRONG_TYPES = [
 
 
 @pytest.mark.parametrize("case", WRONG_TYPES, ids=[c[0] for c in WRONG_TYPES])
-def test_wrong_types_raise_type_error_naming_the_argument(pair, case):
+def test_wrong_types_raise_type_error_naming_the_argument(case):
     _, call, name = case
     with pytest.raises(TypeError) as info:
         call()

@@ -6,12 +6,10 @@ import copy
 import importlib
 import sys
 
+import control
 import famcc
 import numpy as np
 import pytest
-
-control = pytest.importorskip("control")
-
 from famcc.interop import state_labels, to_nlsys
 
 
@@ -37,8 +35,7 @@ def test_response_equals_stepping_directly(ctrl):
     n = 400
     e = _errors(n)
     t = np.arange(n) * ctrl.dt
-    resp = control.input_output_response(sys_, t, e, initial_state=ctrl.state(),
-                                         return_states=True)
+    resp = control.input_output_response(sys_, t, e, initial_state=ctrl.state(), return_states=True)
     twin = copy.copy(ctrl)
     v, states = [], []
     for ek in e:
@@ -72,13 +69,18 @@ def test_functions_are_pure():
 
 def test_closed_loop_equals_manual_loop():
     dt = 1e-3
-    ctrl = famcc.Controller(2, dt, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral",
-                            eps=0.1, k_u=5.0)
+    ctrl = famcc.Controller(
+        2, dt, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral", eps=0.1, k_u=5.0
+    )
     plant_d = control.c2d(control.ss([[0, 1], [-1, -0.5]], [[0], [2]], [[1, 0]], 0), dt)
     plant = control.ss(plant_d, inputs="u", outputs="y", name="plant")
     err = control.summing_junction(inputs=["y", "-r"], output="e")
-    loop = control.interconnect([plant, err, to_nlsys(ctrl, inputs="e", outputs="u")],
-                                inplist="r", outlist=["y", "u"], dt=dt)
+    loop = control.interconnect(
+        [plant, err, to_nlsys(ctrl, inputs="e", outputs="u")],
+        inplist="r",
+        outlist=["y", "u"],
+        dt=dt,
+    )
     n = 2200
     t = np.arange(n) * dt
     r = 0.5 * np.ones(n)
@@ -97,7 +99,7 @@ def test_closed_loop_equals_manual_loop():
         x = A @ x + B[:, 0] * u
     assert np.array_equal(u_cl, np.array(u_man))
     np.testing.assert_allclose(y_cl, y_man, rtol=0, atol=1e-12)
-    assert abs(y_man[-1] - 0.5) < 0.1          # and the loop does its job
+    assert abs(y_man[-1] - 0.5) < 0.1  # and the loop does its job
 
 
 def test_state_labels_and_names():
@@ -130,8 +132,8 @@ def test_bad_arguments():
 def test_missing_python_control_gives_a_helpful_import_error(monkeypatch):
     from famcc import interop
 
-    monkeypatch.setitem(sys.modules, "control", None)   # makes `import control` fail
-    importlib.reload(interop)                           # the module itself imports fine
+    monkeypatch.setitem(sys.modules, "control", None)  # makes `import control` fail
+    importlib.reload(interop)  # the module itself imports fine
     ctrl = famcc.scenarios.paper("finite-time").controller()
     with pytest.raises(ImportError, match="pip install control"):
         interop.to_nlsys(ctrl)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import copy
 import math
+import os
 
 import famcc
 import numpy as np
@@ -22,6 +23,7 @@ from famcc.plants import StrictFeedback
 from famcc.simulation import Sine
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
+from runs import scenario_run
 
 # -- random plants of the paper's class ------------------------------------------
 
@@ -122,8 +124,13 @@ def assert_invariants(res, limits):
     assert np.all(res.bounds[used] >= res.nominal_bounds[used] * (1 - 1e-12))
 
 
+#: Closed-loop examples per property: random each run, the seed printed on failure
+#: (hypothesis prints ``@seed(...)`` to reproduce). FAMCC_HYPOTHESIS_EXAMPLES raises it.
 INVARIANT_SETTINGS = settings(
-    max_examples=15, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+    max_examples=int(os.environ.get("FAMCC_HYPOTHESIS_EXAMPLES", "25")),
+    deadline=None,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow],
 )
 
 
@@ -214,7 +221,7 @@ def _consumed(before: np.ndarray, after: np.ndarray) -> bool:
     return bool(after[0] == 1.0 and after[2] == before[2] + 1 and after[1] == before[1])
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=300, deadline=None)
 @given(
     design=st.sampled_from(sorted(_DESIGNS)),
     errors=st.lists(finite, min_size=1, max_size=40),
@@ -251,30 +258,34 @@ def test_step_output_is_finite_or_a_clean_error(design, errors, applied):
 
 
 @pytest.mark.parametrize(
-    "design, huge", [("rfc-f32", 1e11), ("rfc", 1e100), ("finite-time", 1e155)]
+    "design, huge, outage",
+    # Measured outages (samples of StepError after the outlier) with ~20 % margin.
+    [("rfc-f32", 1e11, 8), ("rfc", 1e100, 600), ("finite-time", 1e155, 55)],
 )
-def test_one_huge_sample_does_not_disable_the_controller(design, huge):
+def test_one_huge_sample_does_not_disable_the_controller(design, huge, outage):
     """One outlier may cost some samples (StepError, hold the last output) but the
-    controller must recover by itself as the differentiator's estimate decays."""
+    controller must recover by itself as the differentiator's estimate decays, within
+    a bounded outage, and then step without errors."""
     ctrl = copy.copy(_DESIGNS[design])
     ctrl.step(0.0)
     try:
         ctrl.step(huge)
     except famcc.StepError:
         pass
-    failures = 0
-    for _ in range(2000):
+    failed = []
+    for i in range(2000):
         try:
             v = ctrl.step(0.0)
         except famcc.StepError:
-            failures += 1
+            failed.append(i)
             continue
         assert math.isfinite(v)
-    assert failures < 2000, "the controller never recovered from one outlier"
+    assert len(failed) <= outage, f"{len(failed)} failed samples after one outlier"
+    assert failed == list(range(len(failed))), "errors after the controller had recovered"
     assert math.isfinite(ctrl.step(0.0))
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=200, deadline=None)
 @given(
     design=st.sampled_from(sorted(_DESIGNS)),
     warmup=st.lists(finite, max_size=5),
@@ -303,7 +314,7 @@ def test_non_finite_input_raises_and_leaves_the_state(design, warmup, bad, where
     assert repr(ctrl.diagnostics) == diag
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(
     design=st.sampled_from(sorted(_DESIGNS)),
     z=st.lists(st.floats(-1e6, 1e6), min_size=3, max_size=3),
@@ -322,7 +333,7 @@ def test_step_state_output_is_finite(design, z):
 @pytest.mark.parametrize("name", famcc.scenarios.names())
 def test_scenario_within_theoretical_bounds(name, variant):
     sc = famcc.scenarios.paper(name, variant)
-    res = sc.run()
+    res = scenario_run(name, variant)
     if sc.regains_accuracy:
         assert sc.check(res) == []
     else:

@@ -23,8 +23,6 @@ import numpy as np
 import pytest
 from famcc import _core
 
-pytest.importorskip("mypy")
-
 ROOT = Path(__file__).resolve().parents[1]
 STUB = Path(famcc.__file__).with_name("_core.pyi")
 ALLOWLIST = ROOT / "tests" / "stubtest_allowlist.txt"  # not needed today
