@@ -45,9 +45,15 @@ from famcc._jet import Jet, as_scalar, cos, sin
 
 __all__ = [
     "VARIANTS",
+    "PhysicalPlant",
     "Plant",
     "StrictFeedback",
+    "dc_motor",
+    "flexible_joint",
+    "pendulum",
+    "quadrotor_altitude",
     "second_order",
+    "smooth_step",
     "third_order",
 ]
 
@@ -440,3 +446,14 @@ def third_order(variant: str = "code") -> Plant:
     [1.0, -0.2, 0.4]
     """
     return _ThirdOrder(_check_variant(variant))
+
+
+# The physical plant suite lives in its own module; re-exported here.
+from famcc.plant_suite import (  # noqa: E402
+    PhysicalPlant,
+    dc_motor,
+    flexible_joint,
+    pendulum,
+    quadrotor_altitude,
+    smooth_step,
+)

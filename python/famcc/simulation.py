@@ -452,7 +452,8 @@ def simulate(
         ``(y_d, y_d', ...)`` of callables ``fn(t)`` needs at least ``n`` entries;
         ``-F/G`` also needs the ``n``-th derivative (``n + 1`` entries).
     u_limits : (lo, hi) or None
-        Actuator saturation, ``lo < 0 < hi``; None means no saturation.
+        Actuator saturation, ``lo < hi`` (e.g. ``(0, T_max)`` for a thrust); None means no
+        saturation.
     substeps : int
         RK4 substeps per sample period (>= 1).
     record : bool
@@ -526,8 +527,8 @@ def simulate(
             lo, hi = (float(v) for v in u_limits)
         except (TypeError, ValueError) as exc:
             raise ValueError(f"u_limits must be None or a pair (lo, hi), got {u_limits!r}") from exc
-        if not (lo < 0.0 < hi) or math.isnan(lo) or math.isnan(hi):
-            raise ValueError(f"u_limits must satisfy lo < 0 < hi, got {u_limits!r}")
+        if not (lo < hi) or math.isnan(lo) or math.isnan(hi):
+            raise ValueError(f"u_limits must satisfy lo < hi, got {u_limits!r}")
         limits = (lo, hi)
     ref_fn, ref_order = _reference_derivatives(reference, n)
     x = np.array(plant.x0, dtype=np.float64).reshape(-1)
