@@ -449,7 +449,7 @@ def third_order(variant: str = "code") -> Plant:
 
 
 # The physical plant suite lives in its own module; re-exported here.
-from famcc.plant_suite import (  # noqa: E402
+from famcc.plant_suite import (
     PhysicalPlant,
     dc_motor,
     flexible_joint,
