@@ -45,6 +45,7 @@ pub mod bounds;
 mod config;
 pub mod constraint;
 pub mod controller;
+pub mod design;
 pub mod differentiator;
 pub mod envelope;
 pub mod error;

@@ -1,0 +1,166 @@
+//! The design rules: every finding can fail, and the linear analysis is right
+//! where it has a closed form.
+
+use famcc_core::design::{check, design, Check, Level, Requirements, Rule};
+
+fn finding(checks: &[Check], rule: Rule) -> Check {
+    *checks.iter().find(|c| c.rule == rule).expect("finding present")
+}
+
+fn req(order: usize) -> Requirements {
+    let mut r = Requirements::new(order, 1e-3, (-50.0, 50.0), 0.01, 8.0, 1.0);
+    r.gain = Some(1.1);
+    r
+}
+
+#[test]
+fn defaults_pass_every_finding_at_low_orders() {
+    for n in 1..=3 {
+        let d = design(&req(n)).unwrap();
+        assert!(d.integral && d.law_order == n + 1);
+        for c in d.checks() {
+            assert_eq!(c.level, Level::Ok, "order {n}: {c:?}");
+        }
+    }
+}
+
+#[test]
+fn time_scales_follow_the_phase_budget() {
+    for n in 1..=7 {
+        let d = design(&req(n)).unwrap();
+        let ratio = (2 * d.law_order - 1) as f64 / famcc_core::design::PHASE_BUDGET;
+        assert!((2.0 / d.mu / d.loop_rate - ratio).abs() < 1e-9 * ratio);
+        assert!((d.loop_rate / d.lambda - ratio).abs() < 1e-9 * ratio);
+        assert!(d.mu >= 10.0 * 1e-3);
+        // the loop rate is what k_u, gain and eps_s make it
+        assert!((2.0 * d.k_u * 1.1 / d.eps_s - d.loop_rate).abs() < 1e-9 * d.loop_rate);
+    }
+}
+
+#[test]
+fn settle_time_finding_fails_when_the_rate_is_too_slow() {
+    let mut r = req(4);
+    r.settle_time = 1.0;
+    let d = design(&r).unwrap();
+    let c = finding(d.checks(), Rule::SettleTime);
+    assert_eq!(c.level, Level::Fail);
+    assert!(c.suggestion > 1.0, "suggests a longer settling time: {c:?}");
+    // the suggestion is feasible
+    r.settle_time = c.suggestion * 1.01;
+    let d = design(&r).unwrap();
+    assert_eq!(finding(d.checks(), Rule::SettleTime).level, Level::Ok);
+}
+
+#[test]
+fn hold_input_finding_fails_beyond_the_limits() {
+    let mut r = req(2);
+    r.hold_input = 60.0;
+    let d = design(&r).unwrap();
+    assert_eq!(finding(d.checks(), Rule::HoldInput).level, Level::Fail);
+}
+
+#[test]
+fn without_gain_the_loop_is_unchecked_and_says_so() {
+    let mut r = req(2);
+    r.gain = None;
+    let d = design(&r).unwrap();
+    assert!(!d.integral, "integral action needs the gain");
+    assert_eq!(finding(d.checks(), Rule::GainUnknown).level, Level::Warn);
+    assert!(d.checks().iter().all(|c| c.rule != Rule::SampledLoop));
+}
+
+#[test]
+fn accuracy_finding_fails_without_integral_action_under_load() {
+    // DC motor: G = 25 rad/s^2/V, 4 V hold: 0.01 rad is out of reach without I
+    let mut r = Requirements::new(2, 1e-3, (-12.0, 12.0), 0.01, 2.0, 4.0);
+    r.gain = Some(25.0);
+    r.integral = Some(false);
+    let d = design(&r).unwrap();
+    let c = finding(d.checks(), Rule::Accuracy);
+    assert_eq!(c.level, Level::Fail, "{c:?}");
+    assert!(c.suggestion > 0.01);
+    r.eps = 2.0 * c.suggestion;
+    let d = design(&r).unwrap();
+    assert_eq!(finding(d.checks(), Rule::Accuracy).level, Level::Ok);
+    // and integral action removes the problem
+    r.eps = 0.01;
+    r.integral = None;
+    let d = design(&r).unwrap();
+    assert!(d.integral && d.checks().iter().all(|c| c.rule != Rule::Accuracy));
+}
+
+#[test]
+fn sampled_loop_finding_fails_for_a_too_stiff_loop() {
+    let r = req(2);
+    let mut d = design(&r).unwrap();
+    assert_eq!(finding(d.checks(), Rule::SampledLoop).level, Level::Ok);
+    d.k_u *= 100.0;
+    check(&mut d, &r).unwrap();
+    let c = finding(d.checks(), Rule::SampledLoop);
+    assert_eq!(c.level, Level::Fail);
+    assert!(c.value > 1.0);
+}
+
+#[test]
+fn sampled_loop_radius_matches_the_first_order_closed_form() {
+    // order 1, no integral, no differentiator: x_{k+1} = (1 - G K dt) x_k
+    let mut r = req(1);
+    r.integral = Some(false);
+    for scale in [0.5, 1.0, 10.0, 30.0] {
+        let mut d = design(&r).unwrap();
+        d.k_u *= scale;
+        check(&mut d, &r).unwrap();
+        let k = 2.0 * d.k_u / d.eps_s;
+        let expect = (1.0 - 1.1 * k * 1e-3).abs();
+        let got = finding(d.checks(), Rule::SampledLoop).value;
+        assert!(
+            (got - expect).abs() < 1e-6 * expect.max(1e-3),
+            "{got} vs {expect}"
+        );
+    }
+}
+
+#[test]
+fn noise_slows_the_differentiator_until_the_rule_holds() {
+    let quiet = design(&req(2)).unwrap();
+    let mut r = req(2);
+    r.noise_std = 1e-3;
+    let d = design(&r).unwrap();
+    assert!(d.mu > quiet.mu && d.loop_rate < quiet.loop_rate);
+    let c = finding(d.checks(), Rule::Noise);
+    assert_eq!(c.level, Level::Ok);
+    assert!(c.value <= 0.15);
+}
+
+#[test]
+fn noise_finding_fails_when_no_differentiator_is_slow_enough() {
+    let mut r = req(3);
+    r.noise_std = 10.0;
+    let d = design(&r).unwrap();
+    assert_eq!(finding(d.checks(), Rule::Noise).level, Level::Fail);
+}
+
+#[test]
+fn requirements_are_validated_by_name() {
+    let bad = |f: fn(&mut Requirements)| {
+        let mut r = req(2);
+        f(&mut r);
+        design(&r).unwrap_err().parameter
+    };
+    assert_eq!(bad(|r| r.order = 0), "order");
+    assert_eq!(bad(|r| r.order = 9), "order");
+    assert_eq!(bad(|r| r.dt = 0.0), "dt");
+    assert_eq!(bad(|r| r.eps = f64::NAN), "eps");
+    assert_eq!(bad(|r| r.settle_time = -1.0), "settle_time");
+    assert_eq!(bad(|r| r.u_limits = (1.0, 1.0)), "u_limits");
+    assert_eq!(bad(|r| r.hold_input = -1.0), "hold_input");
+    assert_eq!(bad(|r| r.gain = Some(0.0)), "gain");
+    assert_eq!(bad(|r| r.noise_std = f64::INFINITY), "noise_std");
+    assert_eq!(
+        bad(|r| {
+            r.order = 8;
+            r.integral = Some(true)
+        }),
+        "integral"
+    );
+}
