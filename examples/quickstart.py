@@ -14,7 +14,9 @@ ctrl = famcc.Controller(
     k_u=5.0,
     settle_time=1.0,
 )  # gain, preset time T_s
-result = famcc.simulate(famcc.plants.second_order(), ctrl, t_end=5.0, u_limits=(-100, 100))
+result = famcc.simulate(
+    famcc.plants.second_order(), ctrl, t_end=5.0, reference=famcc.Sine(), u_limits=(-100, 100)
+)
 print(
     f"settling time to 0.1: {result.settling_time(0.1)} s "
     f"(bound T_s + T_fn' = {1.0 + famcc.bounds.T_fn(1.0, 0.5, -1.0)} s)"

@@ -1,4 +1,5 @@
-"""Test-session set-up: the test extras are required, never silently skipped."""
+"""Test-session set-up: the test extras are required, never silently skipped, and
+famcc's own warnings are errors (a test that expects one says so with pytest.warns)."""
 
 from __future__ import annotations
 
@@ -7,10 +8,11 @@ import importlib.util
 import pytest
 
 #: Modules of the ``test`` extra (pyproject.toml) that tests import.
-REQUIRED = ("hypothesis", "mypy", "control", "simple_pid")
+REQUIRED = ("hypothesis", "mypy", "control", "simple_pid", "pandas")
 
 
 def pytest_configure(config: pytest.Config) -> None:
+    config.addinivalue_line("filterwarnings", "error::famcc.FamccWarning")
     missing = [m for m in REQUIRED if importlib.util.find_spec(m) is None]
     if missing:
         raise pytest.UsageError(

@@ -82,7 +82,7 @@ def test_readme_example():
     ctrl = famcc.Controller(
         2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral", eps=0.1, k_u=5.0
     )
-    res = famcc.simulate(second_order(), ctrl, t_end=4.0)
+    res = famcc.simulate(second_order(), ctrl, t_end=4.0, reference=famcc.Sine())
     ts = res.settling_time(0.1)
     assert ts is not None and ts < 1.0 + famcc.bounds.T_fn(1.0, 0.5, -1.0)
     assert res.max_abs_xi < 1.0 and res.clamp_count == 0

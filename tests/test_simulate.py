@@ -80,7 +80,7 @@ class RecordingPlant:
 
 @pytest.mark.parametrize("variant", ["paper", "code"])
 def test_pd_mock_stabilises_the_second_order_plant(variant):
-    res = simulate(plants.second_order(variant), MockPD(), t_end=6.0)
+    res = simulate(plants.second_order(variant), MockPD(), t_end=6.0, reference=Sine())
     tail = res.t >= 4.0
     # measured: max |z1| 0.015 (paper) / 0.034 (code), max |z2| 0.023 / 0.050
     assert np.max(np.abs(res.z[tail, 0])) < 0.05
@@ -90,7 +90,7 @@ def test_pd_mock_stabilises_the_second_order_plant(variant):
 
 
 def test_shapes_and_sample_grid():
-    res = simulate(plants.second_order(), MockPD(dt=2e-3), t_end=1.0)
+    res = simulate(plants.second_order(), MockPD(dt=2e-3), t_end=1.0, reference=Sine())
     K = 501  # round(t_end / dt) + 1 samples, t = 0 and t = t_end included
     assert res.t.shape == res.y.shape == res.v.shape == res.u.shape == (K,)
     assert res.x.shape == res.z.shape == res.z_hat.shape == (K, 2)
@@ -101,7 +101,9 @@ def test_shapes_and_sample_grid():
 
 
 def test_horizon_is_rounded_to_whole_samples():
-    res = simulate(plants.second_order(), MockPD(dt=0.01), t_end=0.1049, record=False)
+    res = simulate(
+        plants.second_order(), MockPD(dt=0.01), t_end=0.1049, record=False, reference=Sine()
+    )
     assert len(res.t) == 11 and res.t[-1] == pytest.approx(0.1)
 
 
@@ -109,7 +111,9 @@ def test_sample_and_hold_and_controller_calls():
     plant = RecordingPlant(plants.second_order())
     ctrl = MockPD(dt=5e-3)
     substeps = 4
-    res = simulate(plant, ctrl, t_end=0.5, u_limits=(-2.5, 3.0), substeps=substeps)
+    res = simulate(
+        plant, ctrl, t_end=0.5, u_limits=(-2.5, 3.0), substeps=substeps, reference=Sine()
+    )
     K = len(res.t)
     # the controller is called exactly once per sample, with e_k = y(t_k) - y_d(t_k)
     assert len(ctrl.calls) == K == 101
@@ -134,7 +138,7 @@ def test_sample_and_hold_and_controller_calls():
 
 def test_diagnostics_are_recorded_after_each_step():
     ctrl = MockPD(dt=1e-2, expand_above=5.0)
-    res = simulate(plants.second_order(), ctrl, t_end=1.0)
+    res = simulate(plants.second_order(), ctrl, t_end=1.0, reference=Sine())
     np.testing.assert_array_equal(res.s, np.arange(1, len(res.t) + 1))
     np.testing.assert_allclose(res.xi, res.v / 1000.0)
     np.testing.assert_array_equal(res.z_hat[:, 0], res.y - res.y_d)
@@ -146,7 +150,9 @@ def test_diagnostics_are_recorded_after_each_step():
 def test_input_respects_limits_and_saturation_is_reported():
     lo, hi = -2.5, 3.0
     ctrl = MockPD(dt=1e-3, expand_above=3.0)
-    res = simulate(plants.second_order("code"), ctrl, t_end=3.0, u_limits=(lo, hi))
+    res = simulate(
+        plants.second_order("code"), ctrl, t_end=3.0, u_limits=(lo, hi), reference=Sine()
+    )
     assert np.all(res.u >= lo) and np.all(res.u <= hi)
     assert res.u_min == lo and res.u_max == hi
     np.testing.assert_array_equal(res.u, np.clip(res.v, lo, hi))
@@ -160,7 +166,7 @@ def test_input_respects_limits_and_saturation_is_reported():
 
 def test_true_error_vector_and_minus_f_over_g():
     plant = plants.second_order("code")
-    res = simulate(plant, MockPD(dt=1e-2), t_end=1.0)
+    res = simulate(plant, MockPD(dt=1e-2), t_end=1.0, reference=Sine())
     for k in (0, 37, len(res.t) - 1):
         t, x = res.t[k], res.x[k]
         np.testing.assert_allclose(
@@ -173,7 +179,7 @@ def test_true_error_vector_and_minus_f_over_g():
 
 def test_minus_f_over_g_is_consistent_with_the_simulated_motion():
     plant = plants.second_order("paper")
-    res = simulate(plant, MockPD(dt=1e-3), t_end=1.0)
+    res = simulate(plant, MockPD(dt=1e-3), t_end=1.0, reference=Sine())
     # d z2/dt over one hold period (central difference of the exact z2) = G (u - (-F/G))
     dz2 = (res.z[2:, 1] - res.z[:-2, 1]) / (2 * res.dt)
     gains = np.array([plant.gain_and_drift(t, x)[0] for t, x in zip(res.t, res.x)])
@@ -197,7 +203,10 @@ class Zero:
 
 def test_rk4_substeps_converge_at_fourth_order():
     plant = plants.second_order()
-    runs = {s: simulate(plant, Zero(1e-2), 2.0, substeps=s, record=False) for s in (1, 2, 100)}
+    runs = {
+        s: simulate(plant, Zero(1e-2), 2.0, substeps=s, record=False, reference=Sine())
+        for s in (1, 2, 100)
+    }
     err1 = np.max(np.abs(runs[1].x - runs[100].x))
     err2 = np.max(np.abs(runs[2].x - runs[100].x))
     assert 12.0 < err1 / err2 < 20.0  # 2^4 = 16 (measured 16.2)
@@ -209,20 +218,22 @@ def test_ten_substeps_agree_with_a_hundred():
     # (2.1e-6). Open-loop third-order plant, dt = 1e-3: 1.2e-11 over 5 s (|x| up to 100).
     plant = plants.second_order()
     for dt, tol_x, tol_v in ((1e-3, 2e-11, 3e-9), (1e-2, 1e-6, 2e-5)):
-        a = simulate(plant, MockPD(dt=dt), 1.0, substeps=10, record=False)
-        b = simulate(plant, MockPD(dt=dt), 1.0, substeps=100, record=False)
+        a = simulate(plant, MockPD(dt=dt), 1.0, substeps=10, record=False, reference=Sine())
+        b = simulate(plant, MockPD(dt=dt), 1.0, substeps=100, record=False, reference=Sine())
         assert np.max(np.abs(a.x - b.x)) < tol_x
         assert np.max(np.abs(a.v - b.v)) < tol_v
     third = plants.third_order()
-    a = simulate(third, Zero(1e-3, 3), 1.0, substeps=10, record=False)
-    b = simulate(third, Zero(1e-3, 3), 1.0, substeps=100, record=False)
+    a = simulate(third, Zero(1e-3, 3), 1.0, substeps=10, record=False, reference=Sine())
+    b = simulate(third, Zero(1e-3, 3), 1.0, substeps=100, record=False, reference=Sine())
     assert np.max(np.abs(a.x - b.x)) < 1e-10
 
 
 def test_fast_path_equals_numpy_path():
     plant = plants.third_order("paper")
-    a = simulate(plant, MockPD(dt=1e-2, order=3, kp=5.0, kd=1.0), 1.0)
-    b = simulate(RecordingPlant(plant), MockPD(dt=1e-2, order=3, kp=5.0, kd=1.0), 1.0)
+    a = simulate(plant, MockPD(dt=1e-2, order=3, kp=5.0, kd=1.0), 1.0, reference=Sine())
+    b = simulate(
+        RecordingPlant(plant), MockPD(dt=1e-2, order=3, kp=5.0, kd=1.0), 1.0, reference=Sine()
+    )
     np.testing.assert_allclose(a.x, b.x, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(a.neg_f_over_g, b.neg_f_over_g, rtol=1e-12)
 
@@ -247,7 +258,7 @@ def test_sine_derivatives():
 
 def test_reference_forms_are_equivalent():
     plant = plants.second_order()
-    base = simulate(plant, MockPD(dt=1e-2), 1.0)
+    base = simulate(plant, MockPD(dt=1e-2), 1.0, reference=Sine())
     as_callable = simulate(plant, MockPD(dt=1e-2), 1.0, reference=lambda t, k: Sine()(t, k))
     as_tuple = simulate(
         plant, MockPD(dt=1e-2), 1.0, reference=(np.sin, np.cos, lambda t: -np.sin(t))
@@ -278,7 +289,7 @@ def test_the_function_does_not_shadow_its_module():
 
 
 def test_record_false_needs_no_diagnostics():
-    res = simulate(plants.second_order(), Zero(1e-2), 0.5, record=False)
+    res = simulate(plants.second_order(), Zero(1e-2), 0.5, record=False, reference=Sine())
     for name in (
         "z_hat",
         "xi",
@@ -299,7 +310,7 @@ def test_plant_without_derivatives_reports_z1_only():
     g = [lambda x, t: 1.0, lambda x, t: 1.0, lambda x, t: 2.0 + math.cos(t)]
     f = [lambda x, t: -x[0], lambda x, t: math.sin(x[0]), lambda x, t: -x[2]]
     plant = plants.StrictFeedback(g, f, [0.1, 0.0, 0.0])
-    res = simulate(plant, MockPD(dt=1e-2, order=3, kp=1.0, kd=0.0), 0.3)
+    res = simulate(plant, MockPD(dt=1e-2, order=3, kp=1.0, kd=0.0), 0.3, reference=Sine())
     np.testing.assert_array_equal(res.z[:, 0], res.y - res.y_d)
     assert np.all(np.isnan(res.z[:, 1:]))
     assert res.neg_f_over_g is None
@@ -321,7 +332,7 @@ class Blowup(plants.Plant):
 def test_non_finite_state_stops_with_the_time():
     # x = 1 / (1 - t): RK4 with h = 0.01 steps past the escape time within (1.0, 1.1)
     with pytest.raises(FloatingPointError, match=r"non-finite between t = 1 s and t = 1\.1 s"):
-        simulate(Blowup(), Zero(0.1, order=1), t_end=3.0, record=False)
+        simulate(Blowup(), Zero(0.1, order=1), t_end=3.0, record=False, reference=Sine())
 
 
 def test_non_finite_controller_output_stops_with_the_time():
@@ -333,7 +344,7 @@ def test_non_finite_controller_output_stops_with_the_time():
             return math.nan if self.n > 2 else 0.0
 
     with pytest.raises(FloatingPointError, match=r"t = 0\.02"):
-        simulate(plants.second_order(), NaNAfterTwo(0.01), 1.0, record=False)
+        simulate(plants.second_order(), NaNAfterTwo(0.01), 1.0, record=False, reference=Sine())
 
 
 @pytest.mark.parametrize(
@@ -360,7 +371,7 @@ def test_non_finite_controller_output_stops_with_the_time():
     ],
 )
 def test_bad_arguments_raise_value_error_naming_them(kwargs, match):
-    args = {"t_end": 1.0, **kwargs}
+    args = {"t_end": 1.0, "reference": Sine(), **kwargs}
     with pytest.raises(ValueError, match=match):
         simulate(plants.second_order(), MockPD(dt=0.01), **args)
 
@@ -377,17 +388,23 @@ def test_bad_arguments_raise_value_error_naming_them(kwargs, match):
 )
 def test_bad_controller_raises_value_error(ctrl, match):
     with pytest.raises(ValueError, match=match):
-        simulate(plants.second_order(), ctrl, 1.0)
+        simulate(plants.second_order(), ctrl, 1.0, reference=Sine())
 
 
 def test_missing_diagnostics_need_record_false():
     with pytest.raises(ValueError, match="record=False"):
-        simulate(plants.second_order(), Zero(0.01), 1.0)
+        simulate(plants.second_order(), Zero(0.01), 1.0, reference=Sine())
 
 
 def test_bad_plant_raises_value_error():
     with pytest.raises(ValueError, match="plant"):
-        simulate(SimpleNamespace(order=0, x0=[], rhs=None), Zero(0.01), 1.0, record=False)
+        simulate(
+            SimpleNamespace(order=0, x0=[], rhs=None),
+            Zero(0.01),
+            1.0,
+            record=False,
+            reference=Sine(),
+        )
 
 
 # -- metrics on hand-made arrays -----------------------------------------------------------

@@ -10,9 +10,15 @@ runs in a compiled, allocation-free Rust core (``famcc._core``).
 ...                         constraint="lateral", eps=0.1, k_u=5.0)
 >>> round(ctrl.step(-1.0), 4)
 5.4931
+
+Any run can be seen and explained: ``famcc.simulate(...)`` returns a
+:class:`SimResult` whose ``plot()`` draws the figure of ``famcc reproduce``,
+whose ``summary()`` gives the metrics in plain words, and
+``famcc.report(results, out=DIR)`` writes a markdown report for a list of runs.
 """
 
 from famcc import bounds, envelope, plants, scenarios, transition
+from famcc._common import DefaultReferenceWarning, FamccWarning, Signal
 from famcc._core import (
     MAX_ORDER,
     ConfigError,
@@ -33,31 +39,39 @@ from famcc._core import (
     skewed,
 )
 from famcc._core import manifold_values as manifold
-from famcc.simulation import SimResult, Sine, simulate
+from famcc.reporting import report, reproduce
+from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
 
 __all__ = [
     "MAX_ORDER",
     "ConfigError",
+    "Constant",
     "Controller",
     "ControllerBank",
+    "DefaultReferenceWarning",
     "Diagnostics",
+    "FamccWarning",
     "FiniteTime",
     "FixedTime",
     "HighGain",
     "Linear",
     "MoulayDiscontinuous",
     "Nonsingular",
+    "Signal",
     "SimResult",
     "Sine",
     "Skewed",
     "Smooth",
     "StepError",
+    "Summary",
     "VariableExponent",
     "__version__",
     "bounds",
     "envelope",
     "manifold",
     "plants",
+    "report",
+    "reproduce",
     "scenarios",
     "simulate",
     "skewed",

@@ -143,7 +143,7 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _run_sweep(args: argparse.Namespace) -> None:
-    from famcc import report
+    from famcc import reporting as report
     from famcc import sweep as sw
 
     rates = args.rates or sw.RATES_HZ
@@ -197,7 +197,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         _run_sweep(args)
         return 0
 
-    from famcc import report
+    from famcc import reporting as report
 
     t0 = time.perf_counter()
     try:

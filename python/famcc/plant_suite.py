@@ -20,8 +20,8 @@ callable stays differentiable and ``-F/G`` can be computed.
 
 >>> from famcc.plants import dc_motor
 >>> m = dc_motor()
->>> m.order, m.output, m.input
-(2, ('angle', 'rad'), ('voltage', 'V'))
+>>> m.order, m.output.name, m.output.unit, m.input.unit
+(2, 'angle', 'rad', 'V')
 >>> round(m.gain, 3)                    # K / (J R), rad/s^2 per V
 25.0
 >>> round(m.hold_input(), 3)            # holds the 1 N m load: R T / K
@@ -71,7 +71,7 @@ class PhysicalPlant(StrictFeedback):
     ----------
     params : dict
         The physical parameters.
-    output, input : (str, str)
+    output, input : famcc.Signal
         Name and unit of the output ``y = x[0]`` and of the input ``u``.
     gain : float
         The nominal input gain ``G`` of ``y^(n) = G u + F`` (units of
@@ -91,10 +91,8 @@ class PhysicalPlant(StrictFeedback):
         gain: float,
         hold: float,
     ) -> None:
-        super().__init__(g, f, x0, name=name)
+        super().__init__(g, f, x0, name=name, output=output, input=input)
         self.params = dict(params)
-        self.output = output
-        self.input = input
         self.gain = float(gain)
         self._hold = float(hold)
 

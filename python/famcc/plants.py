@@ -41,6 +41,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc._common import Signal
 from famcc._jet import Jet, as_scalar, cos, sin
 
 __all__ = [
@@ -85,19 +86,27 @@ class Plant:
         Initial state.
     name, variant : str
         Labels for reports.
+    output, input : (name, unit), name, :class:`famcc.Signal` or None
+        What the output ``y = x[0]`` and the input ``u`` are, e.g.
+        ``output=("angle", "rad")``, ``input=("voltage", "V")``. Figures and
+        reports label every axis with them (the error ``z_i`` in the output's
+        unit per ``s^(i-1)``). Default: ``"y"`` and ``"u"`` without units.
 
     Examples
     --------
     >>> class Integrator(Plant):
     ...     def rhs(self, t, x, u):
     ...         return np.array([u])
-    >>> p = Integrator(1, [0.5], name="integrator")
+    >>> p = Integrator(1, [0.5], name="integrator", output=("position", "m"),
+    ...                input=("speed", "m/s"))
     >>> p.rhs(0.0, p.x0, 2.0)
     array([2.])
+    >>> p.output.unit, p.input
+    ('m', Signal(name='speed', unit='m/s'))
     """
 
     def __init__(self, order: int, x0: Sequence[float], name: str = "plant",
-                 variant: str = "") -> None:
+                 variant: str = "", *, output: Any = None, input: Any = None) -> None:
         if not isinstance(order, (int, np.integer)) or order < 1:
             raise ValueError(f"order must be an integer >= 1, got {order!r}")
         x0_arr = np.array(x0, dtype=np.float64).reshape(-1)
@@ -107,6 +116,8 @@ class Plant:
         self._x0 = x0_arr
         self.name = name
         self.variant = variant
+        self.output = Signal.of(output, "y")
+        self.input = Signal.of(input, "u")
 
     @property
     def x0(self) -> np.ndarray:
@@ -149,6 +160,8 @@ class StrictFeedback(Plant):
         Initial state of length ``n``.
     name, variant : str
         Labels for reports.
+    output, input : (name, unit), name, :class:`famcc.Signal` or None
+        Names and units of ``y = x[0]`` and ``u`` (see :class:`Plant`).
 
     Notes
     -----
@@ -184,7 +197,7 @@ class StrictFeedback(Plant):
 
     def __init__(self, g: Sequence[ScalarFn], f: Sequence[ScalarFn],
                  x0: Sequence[float], name: str = "strict-feedback",
-                 variant: str = "") -> None:
+                 variant: str = "", *, output: Any = None, input: Any = None) -> None:
         g, f = list(g), list(f)
         if len(g) == 0 or len(g) != len(f):
             raise ValueError(
@@ -192,7 +205,7 @@ class StrictFeedback(Plant):
             )
         if not all(callable(c) for c in g + f):
             raise ValueError("every entry of g and f must be callable as fn(x, t)")
-        super().__init__(len(g), x0, name=name, variant=variant)
+        super().__init__(len(g), x0, name=name, variant=variant, output=output, input=input)
         if self._x0.shape != (self.order,):
             raise ValueError(
                 f"x0 must have length {self.order} (the order), got {self._x0.shape[0]}"

@@ -145,14 +145,14 @@ class Scenario:
         saturation keeps returning sooner than ``T'``, the claim stays untested
         and :meth:`verdicts` says so.
         """
-        from famcc.simulation import simulate
+        from famcc.simulation import Sine, simulate
 
         horizon = self.t_end if t_end is None else t_end
         substeps = substeps_for(dt) if substeps is None else substeps
 
         def once(h: float) -> SimResult:
             return simulate(self.plant, self.controller(dt, **overrides), h,
-                            u_limits=self.u_limits, substeps=substeps)
+                            reference=Sine(), u_limits=self.u_limits, substeps=substeps)
 
         res = once(horizon)
         if t_end is not None or not self.saturated:

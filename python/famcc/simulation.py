@@ -18,7 +18,7 @@ Examples
 ...         de = 0.0 if self.prev is None else (e - self.prev) / self.dt
 ...         self.prev = e
 ...         return -25.0 * e - 10.0 * de
->>> res = simulate(second_order("paper"), PD(), t_end=5.0, record=False)
+>>> res = simulate(second_order("paper"), PD(), t_end=5.0, reference=Sine(), record=False)
 >>> len(res.t), float(res.t[-1])
 (5001, 5.0)
 >>> bool(np.max(np.abs(res.z[-1000:, 0])) < 0.1)
@@ -27,14 +27,25 @@ True
 
 from __future__ import annotations
 
+import html
+import importlib
 import math
+import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-__all__ = ["SimResult", "Sine", "simulate"]
+from famcc._common import DefaultReferenceWarning, Signal
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = ["Constant", "SimResult", "Sine", "Summary", "simulate"]
+
+#: Constraint names of the controller's configuration and the paper's abbreviations.
+CONSTRAINTS = {"lateral": "LaMC", "longitudinal": "LoMC", "oblique": "OMC"}
 
 
 class Sine:
@@ -75,6 +86,37 @@ class Sine:
         return f"Sine(amplitude={self.amplitude!r}, omega={self.omega!r}, phase={self.phase!r})"
 
 
+class Constant:
+    """Constant reference ``y_d(t) = value`` (a regulator's set point).
+
+    Called as ``ref(t, k)`` it returns the ``k``-th time derivative: ``value``
+    for ``k = 0``, 0 otherwise.
+
+    Parameters
+    ----------
+    value : float
+
+    Examples
+    --------
+    >>> ref = Constant(0.5)
+    >>> ref(3.0, 0), ref(3.0, 1)
+    (0.5, 0.0)
+    """
+
+    def __init__(self, value: float = 0.0) -> None:
+        if not _is_number(value) or not math.isfinite(value):
+            raise ValueError(f"value must be a finite number, got {value!r}")
+        self.value = float(value)
+
+    def __call__(self, t: float, k: int = 0) -> float:
+        if k < 0:
+            raise ValueError(f"derivative order k must be >= 0, got {k}")
+        return self.value if k == 0 else 0.0
+
+    def __repr__(self) -> str:
+        return f"Constant({self.value!r})"
+
+
 def _reference_derivatives(reference: Any, order: int) -> tuple[Callable[[float], np.ndarray], int]:
     """Return ``(fn, m)``: ``fn(t)`` gives ``(y_d, ..., y_d^(m))``, ``m`` is n or n - 1."""
     if reference is None:
@@ -101,7 +143,9 @@ def _reference_derivatives(reference: Any, order: int) -> tuple[Callable[[float]
         fn_out = from_call
     else:
         raise ValueError(  # noqa: TRY004 - bad arguments raise ValueError throughout
-            "reference must be None, a callable reference(t, k) or a sequence of callables"
+            "reference must be a callable reference(t, k) such as famcc.Sine() or "
+            "famcc.Constant(c), a sequence of callables (y_d, y_d', ...) or None (the paper's "
+            "sin t, with a warning)"
         )
     try:
         probe = fn_out(0.0)
@@ -147,7 +191,21 @@ class SimResult:
     clamp_count : int
         The controller's final clamp count.
     neg_f_over_g : ndarray or None
-        ``-F/G`` (the input that holds ``dz_n/dt = 0``), None when unknown.
+        ``-F/G`` (the input that holds ``dz_n/dt = 0``), None when unknown; then
+        ``neg_f_over_g_error`` says why.
+    output, input : famcc.Signal
+        Names and units of the plant's output and input (from the plant or from
+        :func:`simulate`'s ``output=`` / ``input=``); figures and reports use them.
+    controller_repr : str or None
+        ``repr`` of the controller at the start of the run (its configuration).
+    controller_config : dict or None
+        ``controller.config()`` when the controller has one (famcc's
+        :class:`famcc.Controller` does): constraint, eps, settle_time, laws, ...
+    reference_repr : str or None
+        What the reference was (``"Sine(...)"``, ``"constant 0.0"``, ...).
+    neg_f_over_g_error, derivatives_error : str or None
+        Why ``-F/G``, or the error's derivatives ``z_2..z_n``, are unknown (the
+        plant's own error text, or the missing ingredient); None when known.
 
     Examples
     --------
@@ -157,6 +215,13 @@ class SimResult:
     ...               v=0 * t, u=0 * t, dt=0.1)
     >>> r.first_entry(0.1), r.settling_time(0.1)
     (0.1, 0.3)
+    >>> for part in r.summary(eps=0.1).text.split("; "):
+    ...     print(part)
+    settled to |z1| < 0.1 at 0.3 s (first entry 0.1 s)
+    steady RMS 0.00707
+    u ripple after settling 0 (peak-to-peak)
+    no controller diagnostics recorded (no xi, no bounds)
+    no actuator limits
     """
 
     t: np.ndarray
@@ -180,6 +245,83 @@ class SimResult:
     neg_f_over_g: np.ndarray | None = None
     xi_nominal: np.ndarray | None = None
     expansion: np.ndarray | None = None
+    output: Signal = field(default_factory=lambda: Signal("y"))
+    input: Signal = field(default_factory=lambda: Signal("u"))
+    controller_repr: str | None = None
+    controller_config: dict[str, Any] | None = field(default=None, repr=False)
+    reference_repr: str | None = None
+    neg_f_over_g_error: str | None = None
+    derivatives_error: str | None = None
+    _png: bytes | None = field(default=None, init=False, repr=False, compare=False)
+
+    # -- what the run was --------------------------------------------------------
+    @property
+    def constraint(self) -> str | None:
+        """The controller's constraint (``"lateral"``, ``"longitudinal"``, ``"oblique"``).
+
+        None when the controller has no famcc configuration (a duck-typed one).
+        """
+        cfg = self.controller_config or {}
+        kind = cfg.get("constraint")
+        return str(kind) if kind is not None else None
+
+    @property
+    def settle_time(self) -> float | None:
+        """The envelope's preset time ``T_s`` (s) from the configuration, or None."""
+        cfg = self.controller_config or {}
+        value = cfg.get("settle_time")
+        return _as_float(value)
+
+    @property
+    def accuracy(self) -> float | None:
+        """The output accuracy ``eps_z`` that the configuration presets, or None.
+
+        The controller's ``eps`` bounds the constrained offset, which is ``|z1|``
+        itself only in two cases: LaMC at order 2 (``eps_x = eps_z``, Corollary 1)
+        and order 1 (``s = z1``). With a skewed first stage (SSMD or NSMD) the
+        first stage's ``eps_z`` is the output accuracy (Corollaries 2 and 3).
+        Otherwise the configuration presets no accuracy of ``z1`` and this is
+        None: give ``eps`` to :meth:`summary`, :meth:`plot` or
+        :func:`famcc.report` yourself.
+        """
+        cfg = self.controller_config
+        if not cfg:
+            return None
+        order = cfg.get("order")
+        eps = cfg.get("eps")
+        if order == 1 or (order == 2 and cfg.get("constraint") == "lateral"):
+            return _as_float(eps)
+        skews = cfg.get("skew")
+        first = skews[0] if isinstance(skews, (list, tuple)) and skews else skews
+        eps_z = getattr(first, "eps_z", None)
+        return _as_float(eps_z)
+
+    @property
+    def controller_description(self) -> str:
+        """One line: constraint, laws, eps, ``T_s``, ``k_u`` (or the controller's type)."""
+        cfg = self.controller_config
+        if not cfg:
+            text = self.controller_repr or "unknown controller"
+            if text.startswith("<") and " object at " in text:  # object.__repr__
+                text = text[1:].split(" object at ")[0].rsplit(".", 1)[-1]
+            return (text if len(text) <= 60 else text[:57] + "...") + " (no famcc configuration)"
+        kind = str(cfg.get("constraint"))
+        parts = [f"{CONSTRAINTS.get(kind, kind)} ({kind} constraint)"]
+        laws = cfg.get("feedback") or []
+        skews = cfg.get("skew") or [None] * len(laws)
+        stages = []
+        for law, skew in zip(laws, skews):
+            name = {"Smooth": "SSMD", "Nonsingular": "NSMD"}.get(type(skew).__name__)
+            stages.append(repr(law) + (f" + {name}" if name else ""))
+        if stages:
+            parts.append("h_p " + ", ".join(stages))
+        eps = cfg.get("eps")
+        parts.append(f"eps = {eps:g}" if _is_number(eps) else f"eps = {eps}")
+        if self.settle_time is not None:
+            parts.append(f"T_s = {self.settle_time:g} s")
+        if _is_number(cfg.get("k_u")):
+            parts.append(f"k_u = {cfg['k_u']:g}")
+        return ", ".join(parts)
 
     # -- accuracy ------------------------------------------------------------
     @property
@@ -355,19 +497,70 @@ class SimResult:
             return None
         return float(self.t[expanded[-1] + 1 + after[0]])
 
-    def summary(self, eps: float = 0.1) -> dict[str, Any]:
-        """The metrics as a flat dict (accuracy metrics use ``eps``)."""
+    def ripple(self, eps: float) -> float | None:
+        """Peak-to-peak of the applied ``u`` from the settling time to ``eps`` on.
+
+        The chattering a sampled loop keeps once settled (a law with an infinite
+        slope at 0 ripples, docs/design.md §7.2). For a moving reference or a
+        varying load it includes the input's own swing. None if never settled.
+        """
+        ts = self.settling_time(eps)
+        if ts is None:
+            return None
+        tail = np.asarray(self.u)[np.asarray(self.t) >= ts]
+        return float(np.max(tail) - np.min(tail)) if tail.size else None
+
+    def _eps(self, eps: float | None) -> float | None:
+        return self.accuracy if eps is None else self._check_eps(eps)
+
+    def summary(self, eps: float | None = None) -> Summary:
+        """The run's metrics as a dict, with a short text (``.text``, or ``str()``).
+
+        Parameters
+        ----------
+        eps : float, optional
+            Accuracy for the settling time, steady RMS and ripple. Default: the
+            accuracy the controller's configuration presets (:attr:`accuracy`);
+            when there is none, those metrics are None and the text says so.
+
+        Returns
+        -------
+        Summary
+            A ``dict`` with ``eps``, ``settling_time``, ``first_entry``,
+            ``steady_rms``, ``ripple`` (peak-to-peak ``u`` after settling),
+            ``max_abs_xi_nominal``, ``max_abs_xi``, ``expanded_fraction``,
+            ``expanded_unsaturated_fraction``, ``saturated_fraction``, ``u_min``,
+            ``u_max``, ``saturation_episodes`` (their number),
+            ``last_saturation_end``, ``largest_expansion``, ``nominal_return_time``,
+            ``max_abs_z1_final_second``, ``clamp_count``, ``neg_f_over_g_error``
+            and ``derivatives_error``.
+
+        Examples
+        --------
+        >>> t = np.arange(0.0, 2.001, 0.5)
+        >>> r = SimResult(t=t, y=t, y_d=0 * t, x=t[:, None],
+        ...               z=np.array([[1.0], [0.5], [0.05], [0.02], [0.0]]),
+        ...               v=np.array([4.0, 2.0, 1.0, 0.0, 1.0]),
+        ...               u=np.array([3.0, 2.0, 1.0, 0.0, 1.0]), dt=0.5, u_limits=(-3, 3))
+        >>> s = r.summary(eps=0.1)
+        >>> s["settling_time"], s["ripple"], s["saturated_fraction"]
+        (1.0, 1.0, 0.2)
+        >>> s.text.splitlines()[1]
+        'no controller diagnostics recorded (no xi, no bounds); saturated 20 % of the samples'
+        """
+        e = self._eps(eps)
         episodes = self.saturation_episodes()
-        return {
-            "eps": float(eps),
-            "settling_time": self.settling_time(eps),
-            "first_entry": self.first_entry(eps),
+        metrics: dict[str, Any] = {
+            "eps": e,
+            "settling_time": None if e is None else self.settling_time(e),
+            "first_entry": None if e is None else self.first_entry(e),
             "max_abs_z1_final_second": _tail_max(self.t, np.abs(self.z1), 1.0),
             "max_abs_xi": self.max_abs_xi,
             "max_abs_xi_nominal": self.max_abs_xi_nominal,
             "expanded_fraction": self.expanded_fraction,
             "expanded_unsaturated_fraction": self.expanded_unsaturated_fraction,
-            "steady_rms": self.steady_rms(eps),
+            "steady_rms": None if e is None else self.steady_rms(e),
+            "ripple": None if e is None else self.ripple(e),
             "u_min": self.u_min,
             "u_max": self.u_max,
             "saturated_fraction": self.saturated_fraction,
@@ -376,7 +569,209 @@ class SimResult:
             "largest_expansion": self.largest_expansion,
             "nominal_return_time": self.nominal_return_time,
             "clamp_count": int(self.clamp_count),
+            "neg_f_over_g_error": self.neg_f_over_g_error,
+            "derivatives_error": self.derivatives_error,
         }
+        return Summary(metrics, "\n".join(self._summary_lines(metrics)))
+
+    def _summary_lines(self, m: dict[str, Any]) -> list[str]:
+        ou = "" if self.output.unit is None else f" {self.output.unit}"
+        iu = "" if self.input.unit is None else f" {self.input.unit}"
+        eps = m["eps"]
+        if eps is None:
+            first = (
+                "no accuracy eps known (the controller presets none): pass eps= for the "
+                "settling time, steady RMS and ripple"
+            )
+        elif m["settling_time"] is not None:
+            first = (
+                f"settled to |z1| < {eps:g}{ou} at {m['settling_time']:.3g} s (first entry "
+                f"{m['first_entry']:.3g} s); steady RMS {m['steady_rms']:.3g}{ou}; "
+                f"u ripple after settling {m['ripple']:.3g}{iu} (peak-to-peak)"
+            )
+        else:
+            fe = m["first_entry"]
+            first = (
+                f"NOT settled to |z1| < {eps:g}{ou} by the end ({float(self.t[-1]):g} s; first "
+                f"entry {'never' if fe is None else f'{fe:.3g} s'}, max |z1| in the last second "
+                f"{m['max_abs_z1_final_second']:.3g}{ou})"
+            )
+        sat = (
+            "no actuator limits"
+            if self.u_limits is None
+            else f"saturated {_pct(m['saturated_fraction'])} of the samples"
+        )
+        if self.xi is None:
+            second = f"no controller diagnostics recorded (no xi, no bounds); {sat}"
+        else:
+            xi_nom = m["max_abs_xi_nominal"]
+            nominal = (
+                f"max |xi~| {m['max_abs_xi']:.3g}"
+                if xi_nom is None
+                else f"max nominal |xi| {xi_nom:.3g}"
+                + (" (> 1: left the nominal set)" if xi_nom > 1 else "")
+            )
+            exp = m["expanded_unsaturated_fraction"]
+            second = f"{nominal}; expanded while unsaturated {_pct(exp)}; {sat}"
+        lines = [first, second]
+        missing = []
+        if self.neg_f_over_g_error:
+            missing.append(f"-F/G unknown: {self.neg_f_over_g_error}")
+        if self.derivatives_error:
+            n = self.z.shape[1]
+            which = "z2" if n == 2 else f"z2..z{n}"
+            missing.append(f"{which} unknown: {self.derivatives_error}")
+        if missing:
+            lines.append("; ".join(missing))
+        return lines
+
+    # -- views -------------------------------------------------------------------
+    def __repr__(self) -> str:
+        out = self.output.name + self.output.bracket()
+        inp = self.input.name + self.input.bracket()
+        t_end = float(self.t[-1]) if len(self.t) else 0.0
+        head = (
+            f"<famcc.SimResult: {len(self.t)} samples, 0-{t_end:g} s at dt = {self.dt:g} s; "
+            f"output {out}, input {inp}"
+        )
+        ctrl = f" controller: {self.controller_description}"
+        if self.reference_repr:
+            ctrl += f"; reference {self.reference_repr}"
+        body = [" " + line for line in self.summary().text.splitlines()]
+        return "\n".join([head, ctrl, *body]) + ">"
+
+    def plot(
+        self,
+        panels: Sequence[str] | None = None,
+        *,
+        window: tuple[float, float] | None = None,
+        eps: float | None = None,
+        title: str | None = None,
+    ) -> Figure:
+        """The ``famcc reproduce`` figure of this run; returns the matplotlib Figure.
+
+        Parameters
+        ----------
+        panels : sequence of str, optional
+            Which panels, in order, from ``"error"`` (``z`` and its estimate),
+            ``"accuracy"`` (``z1`` with the eps band and the settling time),
+            ``"constraint"`` (the constrained value with its nominal and flexible
+            bounds), ``"input"`` (``u``, the limits, saturation, ``-F/G``) and
+            ``"xi"`` (the nominal ``xi`` and ``xi~``). Default: all that the run
+            recorded.
+        window : (t0, t1), optional
+            Time window in seconds (default: the whole run; the accuracy panel
+            then starts at ``T_s``).
+        eps : float, optional
+            Accuracy band (default: :attr:`accuracy`).
+        title : str, optional
+            Figure title (default: the plant's output, the controller, ``dt``).
+
+        See :func:`famcc.plot.figure` and docs/figures.md.
+        """
+        from famcc import plot
+
+        return plot.figure(self, panels, window=window, eps=eps, title=title)
+
+    def _repr_png_(self) -> bytes:
+        """The figure as PNG (Jupyter); drawn once per result."""
+        if self._png is None:
+            import io
+
+            buf = io.BytesIO()
+            self.plot().savefig(buf, format="png", dpi=72)
+            self._png = buf.getvalue()
+        return self._png
+
+    def _repr_html_(self) -> str:
+        """The summary as a table and the figure (Jupyter)."""
+        import base64
+
+        m = self.summary()
+        rows = "".join(
+            f"<tr><th style='text-align:left'>{html.escape(k)}</th>"
+            f"<td style='text-align:left'>{html.escape(_cell(v))}</td></tr>"
+            for k, v in m.items()
+            if v is not None
+        )
+        head = html.escape(repr(self).splitlines()[0].lstrip("<"))
+        ctrl = html.escape(self.controller_description)
+        png = base64.b64encode(self._repr_png_()).decode("ascii")
+        notes = "".join(f"<li>{html.escape(line)}</li>" for line in m.text.splitlines())
+        return (
+            f"<div><p><b>{head}</b><br>controller: {ctrl}</p><ul>{notes}</ul>"
+            f"<details><summary>metrics</summary><table>{rows}</table></details>"
+            f"<img src='data:image/png;base64,{png}' style='max-width:100%'/></div>"
+        )
+
+    def to_dataframe(self) -> Any:
+        """The recorded arrays as a :class:`pandas.DataFrame` indexed by time.
+
+        Columns: ``y``, ``y_d``, ``x1..xn``, ``z1..zn``, ``v``, ``u``,
+        ``saturated`` and, when recorded, ``z_hat1..z_hatn``, ``xi``,
+        ``xi_nominal``, ``s``, ``s_prev``, ``ds_prev``, ``bound_x``, ``bound_y``,
+        ``nominal_bound_x``, ``nominal_bound_y``, ``expanded``, ``expansion`` and
+        ``neg_f_over_g``. ``df.attrs`` holds the names and units.
+
+        Raises
+        ------
+        ImportError
+            When pandas is not installed (it is optional: ``pip install pandas``).
+        """
+        try:
+            pd: Any = importlib.import_module("pandas")
+        except ImportError as exc:
+            raise ImportError(
+                "SimResult.to_dataframe() needs pandas, which famcc does not require: "
+                "pip install pandas"
+            ) from exc
+        n = self.z.shape[1]
+        cols: dict[str, Any] = {"y": self.y, "y_d": self.y_d}
+        cols.update({f"x{i + 1}": self.x[:, i] for i in range(self.x.shape[1])})
+        cols.update({f"z{i + 1}": self.z[:, i] for i in range(n)})
+        if self.z_hat is not None:
+            cols.update({f"z_hat{i + 1}": self.z_hat[:, i] for i in range(n)})
+        cols.update({"v": self.v, "u": self.u, "saturated": self.saturated})
+        for name in ("xi", "xi_nominal", "s", "s_prev", "ds_prev"):
+            if getattr(self, name) is not None:
+                cols[name] = getattr(self, name)
+        for name, arr in (("bound", self.bounds), ("nominal_bound", self.nominal_bounds)):
+            if arr is not None:
+                cols[f"{name}_x"], cols[f"{name}_y"] = arr[:, 0], arr[:, 1]
+        for name in ("expanded", "expansion", "neg_f_over_g"):
+            if getattr(self, name) is not None:
+                cols[name] = getattr(self, name)
+        df = pd.DataFrame(cols, index=pd.Index(self.t, name="t"))
+        df.attrs.update(
+            output=(self.output.name, self.output.unit),
+            input=(self.input.name, self.input.unit),
+            dt=self.dt,
+            u_limits=self.u_limits,
+        )
+        return df
+
+
+class Summary(dict[str, Any]):
+    """:meth:`SimResult.summary`: the metrics (a ``dict``) and a short text.
+
+    ``str(summary)`` and ``summary.text`` give the text, a few lines in plain
+    words; the keys are the metrics.
+    """
+
+    def __init__(self, metrics: dict[str, Any], text: str) -> None:
+        super().__init__(metrics)
+        self.text = text
+
+    def __str__(self) -> str:
+        return self.text
+
+
+def _pct(v: float | None) -> str:
+    return "-" if v is None else f"{100 * v:.3g} %"
+
+
+def _cell(v: Any) -> str:
+    return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
 def _tail_max(t: np.ndarray, values: np.ndarray, window: float) -> float:
@@ -419,6 +814,47 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
 
 
+def _as_float(value: Any) -> float | None:
+    """``float(value)`` for a real number, else None."""
+    return float(value) if _is_number(value) else None
+
+
+#: What a plant's ``output_derivatives`` / ``gain_and_drift`` may raise when it cannot
+#: compute them: kept as the reason (``SimResult.*_error``), never silently dropped.
+_PLANT_ERRORS = (NotImplementedError, TypeError, ValueError, ArithmeticError)
+
+
+def _plant_error(exc: BaseException, t: float) -> str:
+    text = str(exc) or type(exc).__name__
+    if not isinstance(exc, NotImplementedError):
+        text = f"{type(exc).__name__} at t = {t:.6g} s: {text}"
+    return text
+
+
+def _describe_controller(controller: Any) -> tuple[str, dict[str, Any] | None]:
+    """``(repr, config)`` of the controller at the start of the run (config may be None)."""
+    text = repr(controller)
+    config = getattr(controller, "config", None)
+    cfg = None
+    if callable(config):
+        try:
+            value = config()
+        except (TypeError, ValueError, AttributeError, RuntimeError):
+            value = None  # a duck-typed controller's config(): then no configuration
+        cfg = dict(value) if isinstance(value, dict) else None
+    return text, cfg
+
+
+def _describe_reference(reference: Any) -> str:
+    if reference is None:
+        return "Sine() (the paper's sin t, by default)"
+    if isinstance(reference, (tuple, list)):
+        return f"{len(reference)} callables (y_d and {len(reference) - 1} derivatives)"
+    if isinstance(reference, (Sine, Constant)):
+        return repr(reference)
+    return f"callable {getattr(reference, '__name__', type(reference).__name__)}(t, k)"
+
+
 def simulate(
     plant: Any,
     controller: Any,
@@ -427,6 +863,9 @@ def simulate(
     u_limits: Sequence[float] | None = None,
     substeps: int = 10,
     record: bool = True,
+    *,
+    output: Any = None,
+    input: Any = None,
 ) -> SimResult:
     """Run a sampled-and-held closed loop and record it.
 
@@ -446,11 +885,15 @@ def simulate(
         ``K = round(t_end / dt) + 1`` samples at ``t_k = k dt``, ``k = 0..K-1``, so
         both ``t = 0`` and ``t ~= t_end`` are sampled. The plant is integrated up to
         the last sample; the last output is recorded but never applied.
-    reference : None, callable or sequence of callables
-        None means ``y_d = sin t`` (:class:`Sine`). A callable is called as
-        ``reference(t, k)`` for the ``k``-th derivative, ``k = 0..n``. A sequence
-        ``(y_d, y_d', ...)`` of callables ``fn(t)`` needs at least ``n`` entries;
-        ``-F/G`` also needs the ``n``-th derivative (``n + 1`` entries).
+    reference : number, callable or sequence of callables
+        Pass it explicitly. A callable is called as ``reference(t, k)`` for the
+        ``k``-th derivative, ``k = 0..n``: :class:`Sine` for ``y_d = sin t`` (the
+        paper's), :class:`Constant` for a set point, or your own. A sequence ``(y_d, y_d',
+        ...)`` of callables ``fn(t)`` needs at least ``n`` entries; ``-F/G`` also
+        needs the ``n``-th derivative (``n + 1`` entries). None (the default, for
+        existing callers) tracks the paper's ``y_d = sin t`` and warns with
+        :class:`famcc.DefaultReferenceWarning` (a ``FutureWarning``), because a
+        regulator that silently tracks a sine surprises everyone but the paper.
     u_limits : (lo, hi) or None
         Actuator saturation, ``lo < hi`` (e.g. ``(0, T_max)`` for a thrust); None means no
         saturation.
@@ -460,10 +903,18 @@ def simulate(
         Read the controller's diagnostics and ``-F/G`` at every sample. With
         False those fields are None and any object with ``dt``, ``order`` and
         ``step`` can be simulated.
+    output, input : (name, unit), name, :class:`famcc.Signal` or None
+        Names and units of the output and the input for figures and reports,
+        e.g. ``output=("angle", "rad")``, ``input=("voltage", "V")``. Default:
+        the plant's ``output`` / ``input`` attributes, else ``"y"`` and ``"u"``
+        without units.
 
     Returns
     -------
     SimResult
+        With the controller's ``repr`` and configuration, the names and units,
+        and, when ``-F/G`` or the error's derivatives could not be computed, the
+        reason (``neg_f_over_g_error``, ``derivatives_error``).
 
     Raises
     ------
@@ -494,9 +945,13 @@ def simulate(
     >>> from types import SimpleNamespace
     >>> from famcc.plants import second_order
     >>> p_only = SimpleNamespace(dt=0.01, order=2, step=lambda e, applied=None: -20.0 * e)
-    >>> res = simulate(second_order(), p_only, t_end=1.0, u_limits=(-2.5, 3.0), record=False)
+    >>> res = simulate(second_order(), p_only, t_end=1.0, reference=Constant(0.0),
+    ...                u_limits=(-2.5, 3.0),
+    ...                record=False, output=("position", "m"), input=("force", "N"))
     >>> len(res.t), res.u_max <= 3.0, res.saturation_episodes()[0][0]
     (101, True, 0.0)
+    >>> res.output, res.neg_f_over_g_error
+    (Signal(name='position', unit='m'), 'not computed: simulate(record=False)')
     """
     # -- validate -------------------------------------------------------------
     for attr in ("dt", "order", "step"):
@@ -530,7 +985,18 @@ def simulate(
         if not (lo < hi) or math.isnan(lo) or math.isnan(hi):
             raise ValueError(f"u_limits must satisfy lo < hi, got {u_limits!r}")
         limits = (lo, hi)
+    if reference is None:
+        warnings.warn(
+            "simulate() was given no reference, so it tracks the paper's y_d = sin t; pass "
+            "reference=famcc.Sine() to keep that, reference=famcc.Constant(0.0) to regulate to "
+            "a set point, or your own reference(t, k)",
+            DefaultReferenceWarning,
+            stacklevel=2,
+        )
     ref_fn, ref_order = _reference_derivatives(reference, n)
+    out_signal = Signal.of(output if output is not None else getattr(plant, "output", None), "y")
+    in_signal = Signal.of(input if input is not None else getattr(plant, "input", None), "u")
+    ctrl_repr, ctrl_config = _describe_controller(controller)
     x = np.array(plant.x0, dtype=np.float64).reshape(-1)
     if x.shape != (n,) or not np.all(np.isfinite(x)):
         raise ValueError(f"plant.x0 must be {n} finite numbers, got {x.tolist()}")
@@ -545,7 +1011,22 @@ def simulate(
     v_arr = np.empty(K)
     u_arr = np.empty(K)
     has_derivs = True
+    derivs_error: str | None = None
+    derivs_fn = getattr(plant, "output_derivatives", None)
+    if n > 1 and not callable(derivs_fn):
+        has_derivs, derivs_error = False, "the plant has no output_derivatives(t, x) method"
     has_fg = record and ref_order >= n
+    fg_error: str | None = None
+    fg_fn = getattr(plant, "gain_and_drift", None)
+    if not record:
+        fg_error = "not computed: simulate(record=False)"
+    elif ref_order < n:
+        fg_error = (
+            f"the reference gives derivatives only up to order {ref_order}; -F/G needs "
+            f"y_d^({n}) (pass n + 1 = {n + 1} callables, or reference(t, k))"
+        )
+    elif not callable(fg_fn):
+        has_fg, fg_error = False, "the plant has no gain_and_drift(t, x) method"
     negfg = np.full(K, np.nan) if has_fg else None
     if record:
         zh_arr = np.full((K, n), np.nan)
@@ -576,11 +1057,11 @@ def simulate(
             y_arr[k], yd_arr[k], v_arr[k], u_arr[k] = y, yd[0], v, u
             x_arr[k] = x
             z_arr[k, 0] = e
-            if has_derivs and n > 1:
+            if has_derivs and n > 1 and derivs_fn is not None:
                 try:
-                    z_arr[k] = np.asarray(plant.output_derivatives(t, x), dtype=float) - yd[:n]
-                except NotImplementedError:
-                    has_derivs = False
+                    z_arr[k] = np.asarray(derivs_fn(t, x), dtype=float) - yd[:n]
+                except _PLANT_ERRORS as exc:
+                    has_derivs, derivs_error = False, _plant_error(exc, t)
             if record:
                 d = controller.diagnostics
                 xi_arr[k] = d.xi
@@ -594,12 +1075,12 @@ def simulate(
                 zh_arr[k] = np.asarray(d.z_hat, dtype=float)
                 ex_arr[k] = bool(d.expanded)
                 clamp_count = int(d.clamp_count)
-                if has_fg and negfg is not None:
+                if has_fg and negfg is not None and fg_fn is not None:
                     try:
-                        gain, drift = plant.gain_and_drift(t, x)
+                        gain, drift = fg_fn(t, x)
                         negfg[k] = -(drift - yd[n]) / gain
-                    except NotImplementedError:
-                        has_fg = False
+                    except _PLANT_ERRORS as exc:
+                        has_fg, fg_error = False, _plant_error(exc, t)
                         negfg = None
 
             if k < K - 1:
@@ -632,6 +1113,13 @@ def simulate(
         u_limits=limits,
         clamp_count=clamp_count,
         neg_f_over_g=negfg,
+        output=out_signal,
+        input=in_signal,
+        controller_repr=ctrl_repr,
+        controller_config=ctrl_config,
+        reference_repr=_describe_reference(reference),
+        neg_f_over_g_error=fg_error,
+        derivatives_error=derivs_error,
     )
     if record:
         result.z_hat, result.xi, result.s = zh_arr, xi_arr, s_arr

@@ -255,7 +255,7 @@ def sweep(
     """Runs every combination; returns the records sorted by scenario, configuration and rate.
 
     ``jobs`` worker processes (default: the CPU count; 1 runs in-process);
-    ``progress`` is a :class:`famcc.report.Progress` or None.
+    ``progress`` is a :class:`famcc.reporting.Progress` or None.
     """
     import os
 

@@ -37,6 +37,9 @@ output accuracy and ``T_e`` the end of a saturation episode:
 ``nominal-again``
     in the same windows, the bounds are nominal again.
 
+A user's run carries none of these claims; :func:`requirements` judges it
+against the user's own accuracy and time (:func:`settled_by`, :func:`settles`).
+
 >>> import numpy as np, famcc
 >>> from famcc import verdicts
 >>> t = np.arange(0, 5.001, 0.01)
@@ -68,6 +71,8 @@ __all__ = [
     "nominal_again",
     "recovery",
     "recovery_windows",
+    "requirements",
+    "settled_by",
     "settles",
     "settling",
     "unsaturated",
@@ -353,3 +358,83 @@ def nominal_again(result: Any, settle_time: float, t_prime: float) -> Verdict:
         return f"expanded at {n} samples" if n else ""
 
     return _windows_verdict("nominal-again", claim, result, settle_time, t_prime, bad)
+
+
+# ---------------------------------------------------------------------------
+# a user's requirements
+# ---------------------------------------------------------------------------
+
+
+def settled_by(result: Any, eps: float, by: float) -> Verdict:
+    """``|z1| < eps`` for good from ``by`` seconds on: a requirement a user states.
+
+    Unlike :func:`settling`, the time is not moved by saturation: the user asked
+    for accuracy by ``by``. "For good" means until the end of the run, all a run
+    can show. Untested when ``by`` lies beyond the horizon.
+
+    >>> import numpy as np, famcc
+    >>> t = np.arange(0, 3.001, 0.01)
+    >>> z1 = np.where(t < 1.5, 1.0, 0.01)
+    >>> r = famcc.SimResult(t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None],
+    ...                     v=0 * t, u=0 * t, dt=0.01)
+    >>> [settled_by(r, 0.1, by).status for by in (2.0, 1.0, 5.0)]
+    ['held', 'failed', 'untested']
+    """
+    horizon = float(result.t[-1])
+    ts = result.settling_time(eps)
+    claim = f"|z1| < {eps:g} for good from {by:g} s on (required)"
+    if by > horizon:
+        return Verdict(
+            "settled-by",
+            claim,
+            "untested",
+            f"{by:g} s lies beyond the horizon {horizon:g} s (settled at {_t(ts)})",
+        )
+    if ts is not None and ts <= by:
+        return Verdict("settled-by", claim, "held", f"settled at {ts:.3f} s")
+    why = "outside the band at the end of the run" if ts is None else f"settled only at {ts:.3f} s"
+    return Verdict("settled-by", claim, "failed", why)
+
+
+def requirements(
+    result: Any, eps: float | None = None, settle_time: float | None = None
+) -> list[Verdict]:
+    """The claims a user's requirements make about a run (none without requirements).
+
+    Parameters
+    ----------
+    result : famcc.SimResult
+    eps : float, optional
+        Required accuracy of ``|z1|``. Without it there is nothing to judge.
+    settle_time : float, optional
+        ``|z1| < eps`` is required for good from this time on (:func:`settled_by`);
+        without it, only "settled by the end of the run" (:func:`settles` at the
+        horizon). Needs ``eps``.
+
+    Raises
+    ------
+    ValueError
+        ``settle_time`` without ``eps``, or a bad value.
+
+    >>> import numpy as np, famcc
+    >>> t = np.arange(0, 3.001, 0.01)
+    >>> r = famcc.SimResult(t=t, y=t, y_d=0 * t, x=t[:, None], z=np.exp(-t)[:, None],
+    ...                     v=0 * t, u=0 * t, dt=0.01)
+    >>> requirements(r)
+    []
+    >>> [(v.name, v.status) for v in requirements(r, eps=0.1, settle_time=2.5)]
+    [('settled-by', 'held')]
+    """
+    if eps is None:
+        if settle_time is not None:
+            raise ValueError("settle_time is a requirement on |z1| < eps: give eps too")
+        return []
+    if not (isinstance(eps, (int, float)) and np.isfinite(eps) and eps > 0):
+        raise ValueError(f"eps must be a finite number > 0, got {eps!r}")
+    if settle_time is None:
+        return [settles(result, eps, within=float(result.t[-1]))]
+    if not (
+        isinstance(settle_time, (int, float)) and np.isfinite(settle_time) and settle_time >= 0
+    ):
+        raise ValueError(f"settle_time must be a finite number >= 0, got {settle_time!r}")
+    return [settled_by(result, eps, float(settle_time))]
