@@ -41,6 +41,7 @@ from famcc._core import (
 from famcc._core import manifold_values as manifold
 from famcc.reporting import report, reproduce
 from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
+from famcc.tuning import Design, DesignWarning, Finding, design
 
 __all__ = [
     "MAX_ORDER",
@@ -49,8 +50,11 @@ __all__ = [
     "Controller",
     "ControllerBank",
     "DefaultReferenceWarning",
+    "Design",
+    "DesignWarning",
     "Diagnostics",
     "FamccWarning",
+    "Finding",
     "FiniteTime",
     "FixedTime",
     "HighGain",
@@ -67,6 +71,7 @@ __all__ = [
     "VariableExponent",
     "__version__",
     "bounds",
+    "design",
     "envelope",
     "manifold",
     "plants",

@@ -6,6 +6,7 @@ use pyo3::prelude::*;
 
 mod bank;
 mod controller;
+mod design;
 mod errors;
 mod functions;
 mod laws;
@@ -46,5 +47,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(functions::finite_time, m)?)?;
     m.add_function(wrap_pyfunction!(functions::variable_exponent, m)?)?;
     m.add_function(wrap_pyfunction!(functions::fixed_time, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design_rules, m)?)?;
     Ok(())
 }

@@ -1,0 +1,85 @@
+//! `famcc_core::design` for Python: the rules' numbers, translated to a dict.
+
+use crate::errors::config_err;
+use famcc_core::design::{self, Level, Requirements, Rule};
+use famcc_core::Discretization;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+fn rule_name(r: Rule) -> &'static str {
+    match r {
+        Rule::SampledLoop => "sampled-loop",
+        Rule::SettleTime => "settle-time",
+        Rule::Accuracy => "accuracy",
+        Rule::Noise => "noise",
+        Rule::HoldInput => "hold-input",
+        Rule::GainUnknown => "gain-unknown",
+    }
+}
+
+fn level_name(l: Level) -> &'static str {
+    match l {
+        Level::Ok => "ok",
+        Level::Warn => "warn",
+        Level::Fail => "fail",
+    }
+}
+
+/// The design rules of famcc-core: the chosen numbers and the findings
+/// `(rule, level, value, limit, suggestion)`.
+#[pyfunction]
+#[pyo3(signature = (order, dt, u_limits, eps, settle_time, hold_input, gain=None, noise_std=0.0, integral=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn design_rules<'py>(
+    py: Python<'py>,
+    order: usize,
+    dt: f64,
+    u_limits: (f64, f64),
+    eps: f64,
+    settle_time: f64,
+    hold_input: f64,
+    gain: Option<f64>,
+    noise_std: f64,
+    integral: Option<bool>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut req = Requirements::new(order, dt, u_limits, eps, settle_time, hold_input);
+    req.gain = gain;
+    req.noise_std = noise_std;
+    req.integral = integral;
+    let d = design::design(&req).map_err(config_err)?;
+    let out = PyDict::new(py);
+    out.set_item("law_order", d.law_order)?;
+    out.set_item("integral", d.integral)?;
+    out.set_item("mu", d.mu)?;
+    out.set_item("a", d.a.get(..order).unwrap_or(&[]).to_vec())?;
+    out.set_item(
+        "discretization",
+        match d.discretization {
+            Discretization::Exact => "exact",
+            Discretization::Euler => "euler",
+            Discretization::Tustin => "tustin",
+        },
+    )?;
+    out.set_item("lambda", d.lambda)?;
+    out.set_item("loop_rate", d.loop_rate)?;
+    out.set_item("k_u", d.k_u)?;
+    out.set_item("eps_s", d.eps_s)?;
+    out.set_item("rho_e", d.rho_e)?;
+    out.set_item("k0", d.k0)?;
+    out.set_item("settle_time", d.settle_time)?;
+    let checks: Vec<(&str, &str, f64, f64, f64)> = d
+        .checks()
+        .iter()
+        .map(|c| {
+            (
+                rule_name(c.rule),
+                level_name(c.level),
+                c.value,
+                c.limit,
+                c.suggestion,
+            )
+        })
+        .collect();
+    out.set_item("checks", checks)?;
+    Ok(out)
+}
