@@ -400,3 +400,15 @@ def manifold_values(
 def finite_time(k: float, p: float, z1_0: float) -> float: ...
 def variable_exponent(k: float, r_b: float, r_1: float, r_t: float) -> float: ...
 def fixed_time(stages: Sequence[tuple[float, float, float, float]]) -> float: ...
+def design_rules(
+    order: int,
+    dt: float,
+    u_limits: tuple[float, float],
+    eps: float,
+    settle_time: float,
+    hold_input: float,
+    gain: float | None = None,
+    noise_std: float = 0.0,
+    integral: bool | None = None,
+) -> dict[str, Any]:
+    """The design rules of famcc-core (see :func:`famcc.design`)."""

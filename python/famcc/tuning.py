@@ -92,7 +92,7 @@ def _message(
     p: dict[str, Any],
     req: dict[str, Any],
 ) -> str:
-    n, dt = req["order"], req["dt"]
+    dt = req["dt"]
     if name == "hold-input":
         return f"hold_input = {value:.4g} against the limits' magnitude {limit:.4g}" + (
             ""
