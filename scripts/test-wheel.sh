@@ -17,21 +17,31 @@ PYTHON=$1
 ART=$2
 
 VERSION=$("$PYTHON" -c 'import tomllib; print(tomllib.load(open("pyproject.toml", "rb"))["project"]["version"])')
-TMP=$(mktemp -d "${RUNNER_TEMP:-${TMPDIR:-/tmp}}/famcc-wheel-test.XXXXXX")
+BASE=${RUNNER_TEMP:-${TMPDIR:-/tmp}}
+if command -v cygpath >/dev/null; then BASE=$(cygpath -u "$BASE"); fi # Windows (Git Bash)
+TMP=$(mktemp -d "$BASE/famcc-wheel-test.XXXXXX")
 "$PYTHON" -m venv "$TMP/venv"
 if [ -x "$TMP/venv/Scripts/python.exe" ]; then VPY="$TMP/venv/Scripts/python.exe"; else VPY="$TMP/venv/bin/python"; fi
 pip_() { "$VPY" -m pip --disable-pip-version-check "$@"; }
 pip_ install --quiet --upgrade pip
 
-# The artefact itself (from a directory: the best match for this interpreter and
-# platform, a wheel before the sdist; an sdist is built from source), then the test
-# extra's packages from the index, famcc pinned to what is installed.
+# The artefact itself, then the test extra's packages from the index, famcc pinned
+# to what is installed. From a directory of wheels: the best match for this
+# interpreter and platform (pip refuses an incompatible one); from a directory with
+# only the sdist: that sdist, built from source (its build requirements come from
+# the index).
 if [ -d "$ART" ]; then
-    pip_ install --no-index --no-deps --find-links "$ART" "famcc==$VERSION"
+    DIR=$ART
+    if compgen -G "$ART/famcc-$VERSION-*.whl" >/dev/null; then
+        pip_ install --no-index --no-deps --find-links "$ART" "famcc==$VERSION"
+    else
+        pip_ install --no-deps "$ART/famcc-$VERSION.tar.gz"
+    fi
 else
+    DIR=$(dirname "$ART")
     pip_ install --no-deps "$ART"
 fi
-pip_ install "famcc[test]==$VERSION" --find-links "$([ -d "$ART" ] && echo "$ART" || dirname "$ART")"
+pip_ install "famcc[test]==$VERSION" --find-links "$DIR"
 
 cd "$ROOT"
 "$VPY" - <<'EOF'
