@@ -32,6 +32,7 @@ INCLUDED = {
 OPTIONAL = [
     ("tuning.md", "Tuning", "Getting started"),
     ("equations.md", "Paper-to-code map", "Errata"),
+    ("glossary.md", "Glossary", "Design decisions"),
 ]
 
 _FENCE = re.compile(r"^(```|~~~)")

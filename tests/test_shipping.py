@@ -51,6 +51,7 @@ def _python_blocks(md: str) -> list[str]:
     return re.findall(r"^```python\n(.*?)^```", md, flags=re.DOTALL | re.MULTILINE)
 
 
+@pytest.mark.filterwarnings("error")  # the examples run warning-free, as a reader would want
 def test_getting_started_examples_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     blocks = _python_blocks(GETTING_STARTED.read_text())
     assert len(blocks) >= 3, "docs/getting-started.md lost its examples"
