@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the tests need and runs every test: Rust (fmt, clippy, unit,
 # property, golden and closed-loop tests, the no_std build), Python (ruff,
-# mypy --strict, pytest, the docstring examples),
+# mypy --strict, pytest, the docstring examples), the documentation site
+# (mkdocs build --strict), the release workflows (actionlint),
 # and the firmware check (cross-build, emulated closed loops, C ABI).
 #
 # Python: inside a virtual environment (activated, or python3 itself is one)
@@ -36,7 +37,7 @@ else
 fi
 echo "python: $PY ($("$PY" -c 'import sys; print(sys.version.split()[0])'))"
 
-"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test]'
+"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs]'
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
 cargo test -p famcc-core
@@ -48,6 +49,13 @@ cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 "$PY" -m pytest -q
 # The examples in the package's docstrings.
 "$PY" -m pytest -q --doctest-modules python/famcc
+# The documentation site (mkdocs.yml): any warning, a broken link among them, fails.
+NO_MKDOCS_2_WARNING=1 "$PY" -m mkdocs build --strict --site-dir target/docs-site
+echo "mkdocs build --strict: OK (target/docs-site)"
+# The release workflows, and the release scripts' syntax.
+"$("$PY" -c 'import sysconfig; print(sysconfig.get_path("scripts"))')/actionlint" -no-color
+echo "actionlint: OK ($(ls .github/workflows/*.yml | tr '\n' ' '))"
+bash -n scripts/build-wheels.sh scripts/test-wheel.sh
 # famcc-core in f32 on a Cortex-M4F under QEMU, and the C ABI (installs its
 # Debian packages with apt-get when missing).
 bash scripts/firmware-check.sh
