@@ -30,9 +30,9 @@ from famcc._core import (
     StepError,
     VariableExponent,
     __version__,
+    manifold,
     skewed,
 )
-from famcc._core import manifold_values as manifold
 from famcc.simulate import SimResult, simulate
 
 __all__ = [
