@@ -12,7 +12,7 @@
 //! 1 kHz with the flexible boundary on (`rho_e = 0.01`); the plant is
 //! integrated by RK4 with 5 substeps per sample, for 4 s.
 //!
-//! Invariant (eq. |xi|, Theorems 2-3): at every sample `|xi~| < 1`, no clamp
+//! Invariant (eq. (88) (|xi|), Theorems 2-3): at every sample `|xi~| < 1`, no clamp
 //! ever happens, and the output and the plant state stay finite. Settling is
 //! not claimed: with tight limits the accuracy may be out of reach.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]

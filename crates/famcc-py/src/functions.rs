@@ -48,7 +48,7 @@ pub fn rho<'py>(
     map_float_or_array(py, t, |t| envelope.at(t))
 }
 
-/// A skewed law h_m (eqs. SSMD, NSMD), callable on floats and arrays.
+/// A skewed law h_m (eqs. (14) SSMD, (15) NSMD), callable on floats and arrays.
 #[pyclass(frozen, module = "famcc._core")]
 pub struct Skewed {
     law: SkewedLaw<f64>,

@@ -265,7 +265,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
             manifold::evaluate_prev(&z, c.laws())
         };
         // A failed first step leaves the envelopes as they were.
-        let unlatched = first.then(|| self.state.envelopes);
+        let unlatched = if first { Some(self.state.envelopes) } else { None };
         let eval = constraint.evaluate(
             c.last_law(),
             &m,
