@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Installs what the tests need and runs every test: Rust (fmt, clippy, unit,
-# property, golden and closed-loop tests, the no_std build), Python (ruff,
-# mypy --strict, pytest, the docstring examples), the documentation site
-# (mkdocs build --strict), the release workflows (actionlint),
-# and the firmware check (cross-build, emulated closed loops, C ABI).
+# Installs what the tests need and runs every test: Rust (fmt, clippy and
+# rustdoc on every workspace; unit, property, golden and closed-loop tests;
+# the no_std build), Python (ruff, mypy --strict, pytest, the docstring
+# examples), the documentation site (mkdocs build --strict), the release
+# workflows (actionlint), and the firmware check (cross-build, emulated
+# closed loops, C ABI).
 #
 # Python: inside a virtual environment (activated, or python3 itself is one)
 # everything is installed into and run with that environment. Otherwise the
@@ -38,10 +39,17 @@ fi
 echo "python: $PY ($("$PY" -c 'import sys; print(sys.version.split()[0])'))"
 
 "$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs]'
-cargo fmt --all -- --check
-cargo clippy --workspace --all-targets -- -D warnings
-cargo test -p famcc-core
-cargo build -p famcc-core --no-default-features
+# fmt, clippy and rustdoc over the three workspaces: the root (core, paper,
+# binding), the C ABI and the firmware keep workspaces of their own
+# (docs/design.md §9.1: their panic = "abort" profiles and features).
+for manifest in Cargo.toml crates/famcc-ffi/Cargo.toml embedded/Cargo.toml; do
+    cargo fmt --all --manifest-path "$manifest" -- --check
+    cargo clippy --manifest-path "$manifest" --workspace --all-targets -- -D warnings
+    RUSTDOCFLAGS="-D warnings" cargo doc --manifest-path "$manifest" --workspace --no-deps --quiet
+done
+cargo test -p famcc-core -p famcc-paper
+# no_std: both build without the standard library.
+cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 "$PY" -m ruff check python tests benches examples

@@ -39,9 +39,9 @@ from famcc._core import (
     StepError,
     VariableExponent,
     __version__,
+    manifold,
     skewed,
 )
-from famcc._core import manifold_values as manifold
 from famcc.reporting import report, reproduce
 from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
 
