@@ -311,7 +311,7 @@ class _SecondOrder(StrictFeedback):
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
         return np.array(self._paper.rhs(t, x, u))
 
-    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float]:
+    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
         """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`)."""
         return self._paper.rhs(t, x, u)
 
@@ -353,7 +353,7 @@ class _ThirdOrder(StrictFeedback):
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
         return np.array(self._paper.rhs(t, x, u))
 
-    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float, float]:
+    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
         """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`)."""
         return self._paper.rhs(t, x, u)
 
