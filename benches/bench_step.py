@@ -6,8 +6,8 @@ Candidates (all fed recorded closed-loop errors of the paper's scenarios, varian
 "code", dt = 1 ms; each famcc/reference candidate in two phases):
 
 - ``loop``: the timing loop with an empty body (harness overhead);
-- ``noop``: ``Controller._noop(e)``, a ``&mut self`` method taking and returning
-  a float: the floor of any Python-to-Rust method call;
+- ``noop``: ``famcc._core._CallFloor().step(e)``, a ``&mut self`` method taking
+  and returning a float: the floor of any Python-to-Rust method call;
 - ``famcc <design>/<phase>``: ``Controller.step(e)`` for finite-time (order 2),
   variable-exponent (order 2) and rfc (order 3); ``transient`` replays samples
   0..999 (t < T_s: first-step latch, shrinking envelope) from a reset
@@ -171,15 +171,18 @@ def stepper(ctrl, errors, phase, calls, name, group, meta):
     return Replay(name, ctrl.step, inputs, rewind, calls, group, meta)
 
 
+#: The floor of a Python-to-Rust method call (a private benchmark helper).
+NOOP = "noop: _CallFloor.step(e)"
+
+
 def build_candidates(records, calls_compiled, calls_python):
     cands = []
-    ft = famcc.scenarios.paper("finite-time", "code").controller(DT)
     e_ft = records["finite-time"]
     cands.append(Replay("loop (empty body)", lambda e: None, e_ft, None, calls_compiled,
                         "floor"))
     # replace the lambda by a true empty loop body: time the bare for-loop
     cands[-1].run = _empty_loop_runner(cands[-1])
-    cands.append(Replay("noop: Controller._noop(e)", ft._noop, e_ft, None, calls_compiled,
+    cands.append(Replay(NOOP, famcc._core._CallFloor().step, e_ft, None, calls_compiled,
                         "floor"))
     for design, (scen, order, _) in DESIGNS.items():
         for phase in ("transient", "settled"):
@@ -470,7 +473,7 @@ def analyse(cands, banks, native, native_src, clock):
         return getattr(c, primary)
 
     by = {c.name: c for c in cands}
-    noop = by["noop: Controller._noop(e)"]
+    noop = by[NOOP]
     loop = by["loop (empty body)"]
     pid = by.get("simple-pid PID(1, 0.1, 0.05)(x)")
     rows = []

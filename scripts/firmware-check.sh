@@ -192,15 +192,15 @@ declare -A TEXT TEXT_STEP TEXT_NEW
 if [ -f "$FW/size-base" ]; then
     base=$(textsz "$FW/size-base")
     for o in 2 3; do
-        full=$(textsz "$FW/size-o$o")
-        new=$(textsz "$FW/size-o$o-new")
+        full=$(textsz "$FW/size-o$o-stepped")
+        new=$(textsz "$FW/size-o$o-built")
         TEXT[$o]=$((full - base))
         TEXT_NEW[$o]=$((new - base))
         TEXT_STEP[$o]=$((full - new))
-        echo "order $o: controller ${TEXT[$o]} bytes = Controller::new ${TEXT_NEW[$o]} + step-only ${TEXT_STEP[$o]} (runtime alone: $base)"
+        echo "order $o: controller ${TEXT[$o]} bytes = built ${TEXT_NEW[$o]} + step-only ${TEXT_STEP[$o]} (runtime alone: $base)"
     done
-    echo "-- largest symbols of the order-3 controller (size-o3)"
-    arm-none-eabi-nm -S --size-sort -C "$FW/size-o3" | tail -12 | while read -r _ sz _ name; do
+    echo "-- largest symbols of the order-3 controller (size-o3-stepped)"
+    arm-none-eabi-nm -S --size-sort -C "$FW/size-o3-stepped" | tail -12 | while read -r _ sz _ name; do
         printf "  %6d  %s\n" "$((16#$sz))" "$name"
     done
     arm-none-eabi-nm -S "$FW/famcc-fw" | while read -r _ sz _ name; do

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs what the tests need and runs every test: Rust (fmt, clippy, unit,
-# property, golden and closed-loop tests, the no_std build), Python (ruff,
-# mypy --strict, pytest, the docstring examples),
-# and the firmware check (cross-build, emulated closed loops, C ABI).
+# Installs what the tests need and runs every test: Rust (fmt, clippy and
+# rustdoc on every workspace; unit, property, golden and closed-loop tests;
+# the no_std build), Python (ruff, mypy --strict, pytest, the docstring
+# examples), the documentation site (mkdocs build --strict), the release
+# workflows (actionlint), and the firmware check (cross-build, emulated
+# closed loops, C ABI).
 #
 # Python: inside a virtual environment (activated, or python3 itself is one)
 # everything is installed into and run with that environment. Otherwise the
@@ -36,11 +38,18 @@ else
 fi
 echo "python: $PY ($("$PY" -c 'import sys; print(sys.version.split()[0])'))"
 
-"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test]'
-cargo fmt --all -- --check
-cargo clippy --workspace --all-targets -- -D warnings
-cargo test -p famcc-core
-cargo build -p famcc-core --no-default-features
+"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs]'
+# fmt, clippy and rustdoc over the three workspaces: the root (core, paper,
+# binding), the C ABI and the firmware keep workspaces of their own
+# (docs/design.md §9.1: their panic = "abort" profiles and features).
+for manifest in Cargo.toml crates/famcc-ffi/Cargo.toml embedded/Cargo.toml; do
+    cargo fmt --all --manifest-path "$manifest" -- --check
+    cargo clippy --manifest-path "$manifest" --workspace --all-targets -- -D warnings
+    RUSTDOCFLAGS="-D warnings" cargo doc --manifest-path "$manifest" --workspace --no-deps --quiet
+done
+cargo test -p famcc-core -p famcc-paper
+# no_std: both build without the standard library.
+cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 "$PY" -m ruff check python tests benches examples
@@ -48,6 +57,13 @@ cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 "$PY" -m pytest -q
 # The examples in the package's docstrings.
 "$PY" -m pytest -q --doctest-modules python/famcc
+# The documentation site (mkdocs.yml): any warning, a broken link among them, fails.
+NO_MKDOCS_2_WARNING=1 "$PY" -m mkdocs build --strict --site-dir target/docs-site
+echo "mkdocs build --strict: OK (target/docs-site)"
+# The release workflows, and the release scripts' syntax.
+"$("$PY" -c 'import sysconfig; print(sysconfig.get_path("scripts"))')/actionlint" -no-color
+echo "actionlint: OK ($(ls .github/workflows/*.yml | tr '\n' ' '))"
+bash -n scripts/build-wheels.sh scripts/test-wheel.sh
 # famcc-core in f32 on a Cortex-M4F under QEMU, and the C ABI (installs its
 # Debian packages with apt-get when missing).
 bash scripts/firmware-check.sh

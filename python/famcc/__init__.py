@@ -3,7 +3,10 @@
 A model-free output-feedback controller (Mu, Hua, Li, Chen, Wei) that drives
 the tracking error of an unknown strict-feedback plant to a preset accuracy
 within a preset time and keeps working when the actuator saturates. The law
-runs in a compiled, allocation-free Rust core (``famcc._core``).
+runs in a compiled, allocation-free Rust core (``famcc._core``). Requires
+CPython >= 3.11; ``famcc.__version__`` (``famcc --version``) is the installed
+version. The documentation site (``mkdocs serve``; ``docs/getting-started.md``)
+has a getting-started guide and the API reference.
 
 >>> import famcc
 >>> ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
@@ -36,9 +39,9 @@ from famcc._core import (
     StepError,
     VariableExponent,
     __version__,
+    manifold,
     skewed,
 )
-from famcc._core import manifold_values as manifold
 from famcc.reporting import report, reproduce
 from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
 from famcc.tuning import Design, DesignWarning, Finding, design

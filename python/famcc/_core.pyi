@@ -14,6 +14,7 @@ from typing_extensions import TypeAlias
 
 __all__ = [
     "MAX_ORDER",
+    "STATE_FIELDS",
     "ConfigError",
     "Controller",
     "ControllerBank",
@@ -24,15 +25,20 @@ __all__ = [
     "Linear",
     "MoulayDiscontinuous",
     "Nonsingular",
+    "PaperPlant",
     "Skewed",
     "Smooth",
     "StepError",
     "VariableExponent",
+    "_CallFloor",
     "__version__",
     "_controller_from_state",
     "finite_time",
     "fixed_time",
-    "manifold_values",
+    "manifold",
+    "paper_corollary_bound",
+    "paper_design",
+    "paper_input_limits",
     "rho",
     "skewed",
     "transition_s",
@@ -43,6 +49,8 @@ __all__ = [
 
 __version__: Final[str]
 MAX_ORDER: Final[int]
+#: Names of the leading entries of ``Controller.state()``; ``z_hat[0..order]`` follows.
+STATE_FIELDS: Final[tuple[str, ...]]
 
 _F64Array: TypeAlias = NDArray[np.float64]
 # Scalars the element-wise functions return a float for.
@@ -57,6 +65,11 @@ _Constraint: TypeAlias = Literal["longitudinal", "lateral", "oblique"]
 _Gamma: TypeAlias = Literal["log", "rational"]
 _Latch: TypeAlias = Literal["paper", "authors"]
 _DType: TypeAlias = Literal["float64", "float32"]
+
+# Defaults written ``= ...`` are famcc-core's (the binding names them, it does not
+# repeat them): k0 = 2, settle_time = 1 s, gamma "log", latch "paper", transition
+# "exponential", discretization "exact", mu = 0.01, dtype "float64", constraint
+# "longitudinal".
 
 class ConfigError(ValueError):
     """An invalid configuration value; the message names the parameter and the rule."""
@@ -192,9 +205,7 @@ class Smooth:
     """Smooth skewed manifold design (SSMD)."""
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
-    def __new__(
-        cls, eps_s: float, eps_z: float, transition: _Transition = "exponential"
-    ) -> Smooth: ...
+    def __new__(cls, eps_s: float, eps_z: float, transition: _Transition = ...) -> Smooth: ...
     @property
     def eps_s(self) -> float: ...
     @property
@@ -210,7 +221,7 @@ class Nonsingular:
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(
-        cls, eps_s: float, eps_z: float, k_pp: float, transition: _Transition = "exponential"
+        cls, eps_s: float, eps_z: float, k_pp: float, transition: _Transition = ...
     ) -> Nonsingular: ...
     @property
     def eps_s(self) -> float: ...
@@ -251,13 +262,11 @@ class HighGain:
         cls,
         mu: float,
         a: Sequence[float],
-        discretization: _Discretization = "exact",
+        discretization: _Discretization = ...,
         limits: Sequence[float] | None = None,
     ) -> HighGain: ...
     @staticmethod
-    def default(
-        order: int, mu: float = 0.01, discretization: _Discretization = "exact"
-    ) -> HighGain: ...
+    def default(order: int, mu: float = ..., discretization: _Discretization = ...) -> HighGain: ...
     @property
     def mu(self) -> float: ...
     @property
@@ -317,18 +326,18 @@ class Controller:
         feedback: _Law | Sequence[_Law] | None = None,
         *,
         skew: _Skew | Sequence[_Skew | None] | None = None,
-        constraint: _Constraint = "longitudinal",
+        constraint: _Constraint = ...,
         eps: float | tuple[float, float],
-        settle_time: float = 1.0,
-        k0: float = 2.0,
+        settle_time: float = ...,
+        k0: float = ...,
         k_u: float,
-        gamma: _Gamma = "log",
+        gamma: _Gamma = ...,
         rho_e: float | Literal["auto"] | None = ...,  # "auto": min(0.01, eps/10); None: off
         differentiator: HighGain | Literal["auto"] | None = ...,  # "auto": HighGain.default(order)
-        latch: _Latch = "paper",
-        transition: _Transition = "exponential",
+        latch: _Latch = ...,
+        transition: _Transition = ...,
         initial_derivatives: Sequence[float] | None = None,
-        dtype: _DType = "float64",
+        dtype: _DType = ...,
     ) -> Controller: ...
     @property
     def dt(self) -> float: ...
@@ -351,7 +360,6 @@ class Controller:
     def state(self) -> _F64Array: ...
     def set_state(self, state: _F64Array) -> None: ...
     def config(self) -> dict[str, Any]: ...
-    def _noop(self, e: float) -> float: ...
     def __copy__(self) -> Controller: ...
     def __deepcopy__(self, _memo: Any) -> Controller: ...
     def __reduce__(self) -> tuple[_Rebuild, tuple[dict[str, Any], list[float]]]: ...
@@ -372,6 +380,36 @@ class ControllerBank:
     def reset(self) -> None: ...
     def controller(self, i: int) -> Controller: ...
 
+@final
+class _CallFloor:
+    """The floor of a Python-to-Rust method call (benchmarks)."""
+
+    def __new__(cls) -> _CallFloor: ...
+    def step(self, e: float) -> float: ...
+
+# -- the paper's designs and plants (famcc-paper) ---------------------------------
+
+@final
+class PaperPlant:
+    """One of the paper's plants: order 2 (examples 1-2) or 3 (example 3)."""
+
+    def __new__(cls, order: int, variant: str) -> PaperPlant: ...
+    @property
+    def x0(self) -> tuple[float, ...]: ...
+    def rhs(
+        self, t: float, x: Sequence[float] | NDArray[np.floating[Any]], u: float
+    ) -> tuple[float, ...]: ...
+    def output_derivatives(
+        self, t: float, x: Sequence[float] | NDArray[np.floating[Any]]
+    ) -> tuple[float, ...]: ...
+    def gain_and_drift(
+        self, t: float, x: Sequence[float] | NDArray[np.floating[Any]]
+    ) -> tuple[float, float]: ...
+
+def paper_design(example: int, variant: str) -> dict[str, Any]: ...
+def paper_corollary_bound(example: int) -> float: ...
+def paper_input_limits(example: int, saturated: bool) -> tuple[float, float]: ...
+
 # -- functions -------------------------------------------------------------------
 
 def _controller_from_state(kwargs: dict[str, Any], state: Sequence[float]) -> Controller: ...
@@ -380,19 +418,19 @@ def transition_t(z: _Scalar) -> float: ...
 @overload
 def transition_t(z: _ArrayIn) -> _F64Array: ...
 @overload
-def transition_s(z: _Scalar, kind: _Transition = "exponential") -> float: ...
+def transition_s(z: _Scalar, kind: _Transition = ...) -> float: ...
 @overload
-def transition_s(z: _ArrayIn, kind: _Transition = "exponential") -> _F64Array: ...
+def transition_s(z: _ArrayIn, kind: _Transition = ...) -> _F64Array: ...
 @overload
-def transition_u(z: _Scalar, kind: _Transition = "exponential") -> float: ...
+def transition_u(z: _Scalar, kind: _Transition = ...) -> float: ...
 @overload
-def transition_u(z: _ArrayIn, kind: _Transition = "exponential") -> _F64Array: ...
+def transition_u(z: _ArrayIn, kind: _Transition = ...) -> _F64Array: ...
 @overload
 def rho(rho0: float, eps: float, settle_time: float, t: _Scalar) -> float: ...
 @overload
 def rho(rho0: float, eps: float, settle_time: float, t: _ArrayIn) -> _F64Array: ...
 def skewed(law: _Law, skew: _Skew | None = None) -> Skewed: ...
-def manifold_values(
+def manifold(
     z: Sequence[float] | NDArray[np.floating[Any]],
     feedback: _Law | Sequence[_Law],
     skew: _Skew | Sequence[_Skew | None] | None = None,

@@ -11,6 +11,7 @@ differentiator discretizations with and without estimate limits and writes
 
 Examples::
 
+    famcc --version
     famcc reproduce --out out/
     famcc reproduce --variant paper --scenario rfc rfc-saturated --out out-paper/
     famcc sweep --out out/ --jobs 2
@@ -42,13 +43,14 @@ def _positive(text: str) -> float:
 
 
 def _parser() -> argparse.ArgumentParser:
-    from famcc import scenarios
+    from famcc import __version__, scenarios
     from famcc import sweep as sw
 
     names = scenarios.names()
     p = argparse.ArgumentParser(
         prog="famcc", description="famcc: fully actuated manifold constraint control."
     )
+    p.add_argument("--version", action="version", version=f"famcc {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
 

@@ -33,6 +33,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from famcc._core import STATE_FIELDS
+
 if TYPE_CHECKING:
     from famcc._core import Controller
 
@@ -40,7 +42,7 @@ __all__ = ["state_labels", "to_nlsys"]
 
 #: Names of the leading entries of ``Controller.state()``; the estimate
 #: ``z_hat[0..n-1]`` follows.
-_STATE_HEAD = ("started", "t_base", "k", "rho0_x", "rho0_y", "clamp_count", "last_v")
+_STATE_HEAD = STATE_FIELDS
 
 
 def _import_control() -> Any:
@@ -126,7 +128,7 @@ def to_nlsys(controller: Controller, *, name: str = "famcc",
     template = copy.copy(controller)
     in_names = _as_names(inputs, "inputs")
     out_names = _as_names(outputs, "outputs")
-    n_states = 7 + template.order
+    n_states = len(_STATE_HEAD) + template.order
 
     # One-entry memo: python-control calls the output and the update function
     # with the same (x, u) at every sample; both need the same step.

@@ -41,6 +41,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core
 from famcc._common import Signal
 from famcc._jet import Jet, as_scalar, cos, sin
 
@@ -285,11 +286,11 @@ def _check_variant(variant: str) -> str:
 
 
 class _SecondOrder(StrictFeedback):
-    """Paper eq. System_sim, with closed-form output derivatives, ``G_a`` and ``F_a``."""
+    """Paper eq. System_sim; right-hand side, exact output derivatives, ``G_a`` and
+    ``F_a`` from the compiled plant (famcc-paper)."""
 
     def __init__(self, variant: str) -> None:
-        self._amp = 1.0 if variant == "paper" else 3.0
-        amp = self._amp
+        amp = 1.0 if variant == "paper" else 3.0
 
         def g1(x: Any, t: Any) -> Any:
             return 1.0 + 0.1 * cos(x[0]) + 0.1 * sin(t)
@@ -303,40 +304,28 @@ class _SecondOrder(StrictFeedback):
         def f2(x: Any, t: Any) -> Any:
             return -(x[0] * x[0] - 1.0) * x[1] + amp * sin(t) + amp * cos(2.0 * t)
 
-        super().__init__([g1, g2], [f1, f2], [-1.0, 0.5], name="second-order",
+        self._paper = _core.PaperPlant(2, variant)
+        super().__init__([g1, g2], [f1, f2], self._paper.x0, name="second-order",
                          variant=variant)
 
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
-        return np.array(self.rhs_fast(t, (float(x[0]), float(x[1])), u))
+        return np.array(self._paper.rhs(t, x, u))
 
-    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float]:
+    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
         """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`)."""
-        x1, x2 = x
-        st = math.sin(t)
-        g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * st
-        g2 = 2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * math.cos(t)
-        f2 = -(x1 * x1 - 1.0) * x2 + self._amp * (st + math.cos(2.0 * t))
-        return (g1 * x2 - x1 + st, g2 * u + f2)
+        return self._paper.rhs(t, x, u)
 
     def output_derivatives(self, t: float, x: np.ndarray) -> np.ndarray:
-        x1, x2 = float(x[0]), float(x[1])
-        g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * math.sin(t)
-        return np.array([x1, g1 * x2 - x1 + math.sin(t)])
+        return np.array(self._paper.output_derivatives(t, x))
 
     def gain_and_drift(self, t: float, x: np.ndarray) -> tuple[float, float]:
-        x1, x2 = float(x[0]), float(x[1])
-        st, ct = math.sin(t), math.cos(t)
-        g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * st
-        g2 = 2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * ct
-        f2 = -(x1 * x1 - 1.0) * x2 + self._amp * (st + math.cos(2.0 * t))
-        dx1 = g1 * x2 - x1 + st
-        dg1 = -0.1 * math.sin(x1) * dx1 + 0.1 * ct       # d/dt g1
-        # y'' = dg1 x2 + g1 (g2 u + f2) + d/dt(-x1 + sin t)
-        return g1 * g2, dg1 * x2 + g1 * f2 - dx1 + ct
+        return self._paper.gain_and_drift(t, x)
 
 
 class _ThirdOrder(StrictFeedback):
-    """Paper eq. System_sim3 (with the factor ``x2`` restored in ``x1'``)."""
+    """Paper eq. System_sim3 (with the factor ``x2`` restored in ``x1'``); right-hand
+    side, exact output derivatives, ``G_a`` and ``F_a`` from the compiled plant
+    (famcc-paper)."""
 
     def __init__(self, variant: str) -> None:
         def g1(x: Any, t: Any) -> Any:
@@ -357,65 +346,22 @@ class _ThirdOrder(StrictFeedback):
         def f3(x: Any, t: Any) -> Any:
             return -(x[0] * x[0] + x[1]) * x[2] + 10.0 * sin(t) + 10.0 * cos(2.0 * t)
 
-        x0 = [1.0, -0.2, 0.4] if variant == "paper" else [1.0, 0.5, 4.0]
-        super().__init__([g1, g2, g3], [f1, f2, f3], x0, name="third-order",
+        self._paper = _core.PaperPlant(3, variant)
+        super().__init__([g1, g2, g3], [f1, f2, f3], self._paper.x0, name="third-order",
                          variant=variant)
 
-    @staticmethod
-    def _terms(t: float, x: np.ndarray) -> dict[str, float]:
-        x1, x2, x3 = float(x[0]), float(x[1]), float(x[2])
-        st, ct = math.sin(t), math.cos(t)
-        sx1, cx1 = math.sin(x1), math.cos(x1)
-        p12 = x1 * x2
-        g1 = 1.0 + 0.1 * sx1 + 0.1 * ct
-        g2 = 1.0 + 0.1 * math.cos(p12) + 0.1 * st
-        g3 = 2.0 + 0.2 * math.sin(p12 * x3) + 0.1 * ct
-        f1 = -x1 + ct
-        f2 = -(x1 * x1 - 1.0) * x2 + st
-        f3 = -(x1 * x1 + x2) * x3 + 10.0 * st + 10.0 * math.cos(2.0 * t)
-        return {"x1": x1, "x2": x2, "x3": x3, "st": st, "ct": ct, "sx1": sx1, "cx1": cx1,
-                "p12": p12, "g1": g1, "g2": g2, "g3": g3, "f1": f1, "f2": f2, "f3": f3}
-
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
-        return np.array(self.rhs_fast(t, (float(x[0]), float(x[1]), float(x[2])), u))
+        return np.array(self._paper.rhs(t, x, u))
 
-    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, float, float]:
+    def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
         """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`)."""
-        x1, x2, x3 = x
-        st, ct = math.sin(t), math.cos(t)
-        return (
-            (1.0 + 0.1 * math.sin(x1) + 0.1 * ct) * x2 - x1 + ct,
-            (1.0 + 0.1 * math.cos(x1 * x2) + 0.1 * st) * x3 - (x1 * x1 - 1.0) * x2 + st,
-            (2.0 + 0.2 * math.sin(x1 * x2 * x3) + 0.1 * ct) * u
-            - (x1 * x1 + x2) * x3 + 10.0 * st + 10.0 * math.cos(2.0 * t),
-        )
-
-    def _derivatives(self, t: float, x: np.ndarray) -> tuple[float, float, float, float, float]:
-        """Return ``(y, y', y'', G_a, F_a)``; see the derivation inline."""
-        d = self._terms(t, x)
-        x1, x2, x3 = d["x1"], d["x2"], d["x3"]
-        st, ct, sx1, cx1 = d["st"], d["ct"], d["sx1"], d["cx1"]
-        g1, g2, g3, f2, f3 = d["g1"], d["g2"], d["g3"], d["f2"], d["f3"]
-        dx1 = g1 * x2 + d["f1"]                                   # y'
-        dx2 = g2 * x3 + f2
-        dg1 = 0.1 * cx1 * dx1 - 0.1 * st                          # d/dt g1
-        ddx1 = dg1 * x2 + g1 * dx2 - dx1 - st                     # y'' (f1' = -x1' - sin t)
-        ddg1 = -0.1 * sx1 * dx1 * dx1 + 0.1 * cx1 * ddx1 - 0.1 * ct
-        dg2 = -0.1 * math.sin(d["p12"]) * (dx1 * x2 + x1 * dx2) + 0.1 * ct
-        df2 = -2.0 * x1 * dx1 * x2 - (x1 * x1 - 1.0) * dx2 + ct
-        # x2'' = dg2 x3 + g2 x3' + df2, x3' = g3 u + f3
-        ddx2_drift = dg2 * x3 + g2 * f3 + df2
-        # y''' = g1'' x2 + 2 g1' x2' + g1 x2'' + f1'', f1'' = -x1'' - cos t
-        drift = ddg1 * x2 + 2.0 * dg1 * dx2 + g1 * ddx2_drift - ddx1 - ct
-        return x1, dx1, ddx1, g1 * g2 * g3, drift
+        return self._paper.rhs(t, x, u)
 
     def output_derivatives(self, t: float, x: np.ndarray) -> np.ndarray:
-        y, dy, ddy, _, _ = self._derivatives(t, x)
-        return np.array([y, dy, ddy])
+        return np.array(self._paper.output_derivatives(t, x))
 
     def gain_and_drift(self, t: float, x: np.ndarray) -> tuple[float, float]:
-        _, _, _, gain, drift = self._derivatives(t, x)
-        return gain, drift
+        return self._paper.gain_and_drift(t, x)
 
 
 def second_order(variant: str = "code") -> Plant:

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import famcc
-from famcc import bounds, plants, verdicts
+from famcc import _core, plants, verdicts
 
 if TYPE_CHECKING:
     from famcc.simulation import SimResult
@@ -62,12 +62,6 @@ _NAMES = (
     "rfc",
     "rfc-saturated",
 )
-
-_LIMITS = {
-    "finite-time": (-2.5, 3.0),
-    "variable-exponent": (-2.0, 3.0),
-    "rfc": (-7.0, 9.0),
-}
 
 
 @dataclass(frozen=True)
@@ -225,33 +219,17 @@ def names() -> list[str]:
     return list(_NAMES)
 
 
+_DESCRIPTIONS = {
+    1: "LaMC finite-time PPC (Corollary 1)",
+    2: "LoMC + SSMD variable-exponent fixed-time PPC (Corollary 2)",
+    3: "LoMC + NSMD recursive fixed-time control, RFC (Corollary 3)",
+}
+
+
 def _design(example: int, variant: str) -> tuple[dict[str, Any], float, str]:
-    latch = "authors" if variant == "code" else "paper"
-    if example == 1:
-        kw = {"order": 2, "feedback": famcc.FiniteTime(k=1.0, p=0.5), "constraint": "lateral",
-                  "eps": 0.1, "k_u": 5.0, "differentiator": famcc.HighGain(0.01, [4.0, 4.0])}
-        t_prime = bounds.finite_time(1.0, 0.5, -1.0)
-        desc = "LaMC finite-time PPC (Corollary 1)"
-    elif example == 2:
-        eps_s = 0.15 if variant == "paper" else 0.225
-        kw = {"order": 2, "feedback": famcc.VariableExponent(k=1.5, r_b=0.5, r_1=2.0, r_t=3.0),
-                  "skew": famcc.Smooth(eps_s=eps_s, eps_z=0.1), "constraint": "longitudinal",
-                  "eps": 0.15, "k_u": 2.0, "differentiator": famcc.HighGain(0.01, [4.0, 4.0])}
-        t_prime = bounds.variable_exponent(1.5, 0.5, 2.0, 3.0)
-        desc = "LoMC + SSMD variable-exponent fixed-time PPC (Corollary 2)"
-    else:
-        eps_s1, eps_y = (0.2, 5.0) if variant == "paper" else (0.1, 3.0)
-        kw = {"order": 3,
-                  "feedback": [famcc.FixedTime(alpha=1.0, p=0.5, beta=0.5, q=2.0),
-                            famcc.FixedTime(alpha=2.0, p=0.5, beta=1.0, q=2.0)],
-                  "skew": [famcc.Nonsingular(eps_s=eps_s1, eps_z=0.1, k_pp=0.1),
-                        famcc.Nonsingular(eps_s=eps_y, eps_z=0.2, k_pp=1.0)],
-                  "constraint": "longitudinal", "eps": eps_y, "k_u": 30.0,
-                  "differentiator": famcc.HighGain(0.01, [4.0, 6.0, 4.0])}
-        t_prime = bounds.fixed_time([(1.0, 0.5, 0.5, 2.0), (2.0, 0.5, 1.0, 2.0)])
-        desc = "LoMC + NSMD recursive fixed-time control, RFC (Corollary 3)"
-    kw.update(settle_time=1.0, k0=2.0, rho_e=0.01, gamma="log", latch=latch)
-    return kw, t_prime, desc
+    # The numbers live in the crate famcc-paper (docs/design.md §6.2).
+    kw = _core.paper_design(example, variant)
+    return kw, _core.paper_corollary_bound(example), _DESCRIPTIONS[example]
 
 
 def paper(name: str, variant: str = "code") -> Scenario:
@@ -272,7 +250,7 @@ def paper(name: str, variant: str = "code") -> Scenario:
         saturated=saturated,
         plant=plant,
         controller_kwargs=kw,
-        u_limits=_LIMITS[base] if saturated else (-100.0, 100.0),
+        u_limits=_core.paper_input_limits(example, saturated),
         t_end=10.0,
         eps_z=0.1,
         t_prime=t_prime,

@@ -667,7 +667,9 @@ class SimResult:
         title : str, optional
             Figure title (default: the plant's output, the controller, ``dt``).
 
-        See :func:`famcc.plot.figure` and docs/figures.md.
+        See Also
+        --------
+        famcc.plot.figure : the same figure from a function; docs/figures.md explains it.
         """
         from famcc import plot
 

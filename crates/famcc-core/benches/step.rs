@@ -115,26 +115,26 @@ impl<T: Real> Baseline<T> {
             (Feedback::FiniteTime { k, p }, None) => (*k, *p),
             other => panic!("baseline needs an unskewed finite-time law, got {other:?}"),
         };
-        let Constraint::Lateral { eps } = cfg.constraint else {
+        let Constraint::Lateral { eps } = *cfg.constraint() else {
             panic!("baseline needs LaMC");
         };
-        assert_eq!(cfg.gamma, Gamma::Log);
-        assert_eq!(cfg.transition, Transition::Exponential);
-        assert!(cfg.initial_derivatives.is_none() && cfg.estimate_limits.is_none());
-        let d = cfg.differentiator.unwrap().discretize(cfg.dt).unwrap();
+        assert_eq!(cfg.gamma(), Gamma::Log);
+        assert_eq!(cfg.transition(), Transition::Exponential);
+        assert!(cfg.initial_derivatives().is_none() && cfg.estimate_limits().is_none());
+        let d = cfg.differentiator().unwrap().discretize(cfg.dt()).unwrap();
         Self {
             phi: d.phi,
             gamma: d.gamma,
             k,
             inv_p: T::one() / p,
-            square: T::one() / p == T::c(2.0),
+            square: T::one() / p == T::from_f64(2.0),
             eps,
-            settle_time: cfg.settle_time,
-            k0: cfg.k0,
-            k_u: cfg.k_u,
-            rho_e: cfg.rho_e.unwrap(),
-            dt: cfg.dt,
-            latch: cfg.latch,
+            settle_time: cfg.settle_time(),
+            k0: cfg.k0(),
+            k_u: cfg.k_u(),
+            rho_e: cfg.rho_e().unwrap(),
+            dt: cfg.dt(),
+            latch: cfg.latch(),
             started: false,
             n: 0,
             zhat: [T::zero(); 2],
@@ -148,7 +148,7 @@ impl<T: Real> Stepper<T> for Baseline<T> {
     fn step_once(&mut self, e: T) -> T {
         let zero = T::zero();
         let one = T::one();
-        let two = T::c(2.0);
+        let two = T::from_f64(2.0);
         if !e.is_finite() {
             return T::nan();
         }
@@ -170,7 +170,7 @@ impl<T: Real> Stepper<T> for Baseline<T> {
             self.rho0 = self.latch.rho0(sigma, self.k0, self.eps);
         }
         // Envelope x_U = (rho0 - eps) exp((w - 1)/w) + eps, w = (T_s - t)/T_s.
-        let t = T::c(self.n as f64) * self.dt;
+        let t = T::from_f64(self.n as f64) * self.dt;
         let x_u = if t >= self.settle_time {
             self.eps
         } else {
@@ -206,7 +206,7 @@ impl<T: Real> Stepper<T> for Baseline<T> {
             zero
         } else if zs >= one {
             one
-        } else if zs > T::c(0.5) {
+        } else if zs > T::from_f64(0.5) {
             one - rising(one - zs)
         } else {
             rising(zs)
@@ -289,15 +289,16 @@ pub fn run_chunk<T: Copy, S: Stepper<T>>(start: &S, e: &[T]) -> T {
 }
 
 fn to_t<T: Real>(run: &common::Run) -> Vec<T> {
-    run.z1.iter().map(|&e| T::c(e)).collect()
+    run.z1.iter().map(|&e| T::from_f64(e)).collect()
 }
 
 fn with_disc<T: Real, const N: usize>(c: &Controller<T, N>, disc: Discretization) -> Controller<T, N> {
-    let mut cfg = *c.config();
-    if let Some(h) = cfg.differentiator.as_mut() {
-        h.discretization = disc;
-    }
-    Controller::new(cfg).unwrap()
+    let cfg = c.config();
+    let h = cfg.differentiator().map(|h| HighGain {
+        discretization: disc,
+        ..*h
+    });
+    Controller::new(cfg.to_builder().differentiator(h).build().unwrap())
 }
 
 /// Example 1 (LaMC finite-time), closed loop on the second-order plant
@@ -351,7 +352,7 @@ pub fn binomial<T: Real, const N: usize>() -> [T; N] {
     for (i, ai) in a.iter_mut().enumerate() {
         let i = i + 1;
         c = c * (N + 1 - i) as f64 / i as f64;
-        *ai = T::c(c * 2f64.powi(i as i32));
+        *ai = T::from_f64(c * 2f64.powi(i as i32));
     }
     a
 }
@@ -359,7 +360,7 @@ pub fn binomial<T: Real, const N: usize>() -> [T; N] {
 /// An order-`N` design of `family` (LoMC, eps = 3, k_u = 30, T_s = 1 s,
 /// differentiator `(s + 2)^N`, mu = 0.01, Tustin).
 pub fn order_n<T: Real, const N: usize>(family: Family) -> Controller<T, N> {
-    let c = T::c;
+    let c = T::from_f64;
     let first = (
         Feedback::FixedTime {
             alpha: c(1.0),
@@ -386,19 +387,21 @@ pub fn order_n<T: Real, const N: usize>(family: Family) -> Controller<T, N> {
             Family::Nsmd => first,
         })
         .collect();
-    let mut cfg = Config::<T, N>::new(
-        c(DT),
-        &laws,
-        Constraint::Longitudinal { eps: c(3.0) },
-        c(1.0),
-        c(30.0),
-    )
-    .unwrap();
-    cfg.differentiator = Some(HighGain::new(c(0.01), binomial::<T, N>(), Discretization::Tustin));
-    if family == Family::Nsmd {
-        cfg.latch = Latch::Authors;
-    }
-    Controller::new(cfg).unwrap()
+    let latch = if family == Family::Nsmd {
+        Latch::Authors
+    } else {
+        Latch::Paper
+    };
+    let cfg = Config::<T, N>::builder(c(DT), &laws, Constraint::Longitudinal { eps: c(3.0) }, c(30.0))
+        .differentiator(Some(HighGain::new(
+            c(0.01),
+            binomial::<T, N>(),
+            Discretization::Tustin,
+        )))
+        .latch(latch)
+        .build()
+        .unwrap();
+    Controller::new(cfg)
 }
 
 /// An order-`N` design replaying example 3's recorded closed-loop errors

@@ -9,14 +9,14 @@
 
 use crate::Real;
 
-/// `T_fn' = |z1(0)|^(1-p) / (k_c (1-p))` (Corollary 1, eq. fnT).
+/// `T_fn' = |z1(0)|^(1-p) / (k_c (1-p))` (Corollary 1, eq. (42) (fnT)).
 #[inline]
 pub fn finite_time<T: Real>(k: T, p: T, z1_0: T) -> T {
     z1_0.abs().powf(T::one() - p) / (k * (T::one() - p))
 }
 
 /// `T_fxe' = 1/(k (r_1 - 1)) + 1/(k e^{-a/(2e)} (1 - r_b))` with
-/// `a = (r_t - r_b)(r_1 - r_b)/(r_t - r_1)` (Corollary 2, eq. fxeT).
+/// `a = (r_t - r_b)(r_1 - r_b)/(r_t - r_1)` (Corollary 2, eq. (53) (fxeT)).
 ///
 /// ```
 /// use famcc_core::bounds::variable_exponent;
@@ -28,12 +28,12 @@ pub fn variable_exponent<T: Real>(k: T, r_b: T, r_1: T, r_t: T) -> T {
     let one = T::one();
     let b = (r_1 - r_b) / (r_t - r_1);
     let a = (r_t - r_b) * b;
-    let damp = (-a / (T::c(2.0) * T::E())).exp();
+    let damp = (-a / (T::from_f64(2.0) * T::E())).exp();
     one / (k * (r_1 - one)) + one / (k * damp * (one - r_b))
 }
 
 /// One stage's term of `T_fr'`: `1/(alpha (1-p)) + 1/(beta (q-1))`
-/// (Corollary 3, eq. fxTho).
+/// (Corollary 3, eq. (63) (fxTho)).
 #[inline]
 pub fn fixed_time_stage<T: Real>(alpha: T, p: T, beta: T, q: T) -> T {
     let one = T::one();
@@ -41,7 +41,7 @@ pub fn fixed_time_stage<T: Real>(alpha: T, p: T, beta: T, q: T) -> T {
 }
 
 /// `T_fr' = sum_i (1/(alpha_i (1-p_i)) + 1/(beta_i (q_i-1)))` for stages given
-/// as `(alpha, p, beta, q)` (Corollary 3, eq. fxTho).
+/// as `(alpha, p, beta, q)` (Corollary 3, eq. (63) (fxTho)).
 ///
 /// ```
 /// use famcc_core::bounds::fixed_time;

@@ -1,4 +1,4 @@
-//! The prescribed performance function (paper eq. rho).
+//! The prescribed performance function (paper eq. (4) (rho)).
 //!
 //! `rho(t) = (rho0 - eps) T((T_rho - t)/T_rho) + eps`: it starts at `rho0`,
 //! shrinks smoothly, and equals `eps` exactly from `t = T_rho` on. Units are
@@ -11,15 +11,16 @@
 //! assert!((rho(2.0_f64, 0.1, 1.0, 0.5) - (0.1 + 1.9 * (-1.0_f64).exp())).abs() < 1e-15);
 //! ```
 
+use crate::error::{positive, ConfigError};
 use crate::{transition, Real};
 
-/// `rho(rho0, eps, T_rho)` at time `t` (eq. rho).
+/// `rho(rho0, eps, T_rho)` at time `t` (eq. (4) (rho)).
 #[inline]
 pub fn rho<T: Real>(rho0: T, eps: T, settle_time: T, t: T) -> T {
     if t >= settle_time {
         return eps;
     }
-    (rho0 - eps) * transition::single((settle_time - t) / settle_time) + eps
+    (rho0 - eps) * transition::single_ended((settle_time - t) / settle_time) + eps
 }
 
 /// A latched envelope: `rho(rho0, eps, T_s)` with `rho0` fixed at the first
@@ -35,6 +36,28 @@ pub struct Envelope<T> {
 }
 
 impl<T: Real> Envelope<T> {
+    /// A checked envelope: `eps` finite and `> 0`, `rho0` finite and at
+    /// least `eps`, `settle_time` finite and `> 0` (the controller's own
+    /// envelopes follow from a validated configuration).
+    ///
+    /// ```
+    /// use famcc_core::Envelope;
+    /// assert!(Envelope::new(2.0_f64, 0.1, 1.0).is_ok());
+    /// assert_eq!(Envelope::new(0.05_f64, 0.1, 1.0).unwrap_err().parameter, "rho0");
+    /// ```
+    pub fn new(rho0: T, eps: T, settle_time: T) -> Result<Self, ConfigError> {
+        positive(eps, "eps")?;
+        if !(rho0 >= eps && rho0.is_finite()) {
+            return Err(ConfigError::new("rho0", "must be finite and >= eps"));
+        }
+        positive(settle_time, "settle_time")?;
+        Ok(Self {
+            rho0,
+            eps,
+            settle_time,
+        })
+    }
+
     /// The width at time `t` seconds.
     #[inline]
     pub fn at(&self, t: T) -> T {
@@ -45,7 +68,7 @@ impl<T: Real> Envelope<T> {
 /// How the initial width is latched from the first sample's offset `s0`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Latch {
-    /// The paper (text after eq. yUyL): `rho0 = k0 * max(|s0|, eps)`.
+    /// The paper (text after eq. (22) (yUyL)): `rho0 = k0 * max(|s0|, eps)`.
     #[default]
     Paper,
     /// The authors' code: `rho0 = max(k0 * |s0|, eps)`.

@@ -1,5 +1,6 @@
 //! Error values. famcc-core never panics: invalid configurations and invalid
-//! inputs come back as these values.
+//! inputs come back as these values. Both implement [`core::error::Error`]
+//! (no `std` needed), so `?` converts them into any error type that wraps one.
 
 use core::fmt;
 
@@ -41,8 +42,7 @@ impl fmt::Display for ConfigError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for ConfigError {}
+impl core::error::Error for ConfigError {}
 
 /// Checks `x > 0` (and finite).
 pub(crate) fn positive<T: crate::Real>(x: T, name: &'static str) -> Result<(), ConfigError> {
@@ -86,5 +86,4 @@ impl fmt::Display for StepError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for StepError {}
+impl core::error::Error for StepError {}

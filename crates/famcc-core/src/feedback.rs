@@ -18,12 +18,12 @@ use crate::{Jet, Real};
 /// A negative feedback law `h_p`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Feedback<T> {
-    /// `h(s) = -k s` (eq. lfmi), `k > 0`.
+    /// `h(s) = -k s` (eq. (59) (lfmi)), `k > 0`.
     Linear {
         /// Gain, 1/s.
         k: T,
     },
-    /// `h(s) = -k |s|^p sign(s)`, `k > 0`, `0 < p < 1` (eq. fn).
+    /// `h(s) = -k |s|^p sign(s)`, `k > 0`, `0 < p < 1` (eq. (37) (fn)).
     FiniteTime {
         /// Gain.
         k: T,
@@ -31,7 +31,7 @@ pub enum Feedback<T> {
         p: T,
     },
     /// `h(s) = -alpha |s|^p sign(s) - beta |s|^q sign(s)`, `0 < p < 1 < q`
-    /// (eq. RFCs).
+    /// (eq. (61) (RFCs)).
     FixedTime {
         /// Low-power gain, > 0.
         alpha: T,
@@ -42,7 +42,7 @@ pub enum Feedback<T> {
         /// High power, `q > 1`.
         q: T,
     },
-    /// The paper's continuous variable-exponent law (eq. fxe):
+    /// The paper's continuous variable-exponent law (eq. (45) (fxe)):
     /// `h(s) = -k |s|^{r(s)} sign(s)`, `r(s) = a s^2/(1 + b s^2) + r_b`,
     /// `b = (r_1 - r_b)/(r_t - r_1)`, `a = (r_t - r_b) b`, so that the exponent
     /// is `r_b` at 0, `r_1` at `|s| = 1` and tends to `r_t` at infinity;
@@ -58,7 +58,7 @@ pub enum Feedback<T> {
         r_t: T,
     },
     /// The discontinuous original of Moulay et al. (paper Remark after
-    /// Corollary 2, eq. fvec): `h(s) = -beta |s|^{p(s)} sign(s)` with
+    /// Corollary 2, eq. (58) (fvec)): `h(s) = -beta |s|^{p(s)} sign(s)` with
     /// `p(s) = lambda s^2/(1 + mu s^2)`. Its exponent is 0 at `s = 0`, so
     /// `h` jumps from +beta to -beta across zero. For comparison only.
     MoulayDiscontinuous {
@@ -135,7 +135,7 @@ impl<T: Real> Feedback<T> {
         !matches!(self, Feedback::Linear { .. })
     }
 
-    /// The variable-exponent coefficients `(a, b)` of eq. (fxe).
+    /// The variable-exponent coefficients `(a, b)` of eq. (45) (fxe).
     #[inline]
     fn exponent_coeffs(r_b: T, r_1: T, r_t: T) -> (T, T) {
         let b = (r_1 - r_b) / (r_t - r_1);
@@ -147,14 +147,16 @@ impl<T: Real> Feedback<T> {
     pub fn eval(&self, s: T) -> T {
         match *self {
             Feedback::Linear { k } => -k * s,
-            Feedback::FiniteTime { k, p } => -k * spow(s, p),
-            Feedback::FixedTime { alpha, p, beta, q } => -(alpha * spow(s, p) + beta * spow(s, q)),
+            Feedback::FiniteTime { k, p } => -k * signed_pow(s, p),
+            Feedback::FixedTime { alpha, p, beta, q } => {
+                -(alpha * signed_pow(s, p) + beta * signed_pow(s, q))
+            }
             Feedback::VariableExponent { k, r_b, r_1, r_t } => {
                 let (a, b) = Self::exponent_coeffs(r_b, r_1, r_t);
-                -k * spow(s, var_exponent(s, a, b, r_b))
+                -k * signed_pow(s, var_exponent(s, a, b, r_b))
             }
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
-                -beta * spow(s, var_exponent(s, lambda, mu, T::zero()))
+                -beta * signed_pow(s, var_exponent(s, lambda, mu, T::zero()))
             }
         }
     }
@@ -168,10 +170,10 @@ impl<T: Real> Feedback<T> {
             Feedback::FixedTime { alpha, p, beta, q } => -(s.signed_pow(p) * alpha + s.signed_pow(q) * beta),
             Feedback::VariableExponent { k, r_b, r_1, r_t } => {
                 let (a, b) = Self::exponent_coeffs(r_b, r_1, r_t);
-                var_spow_jet(s, a, b, r_b) * (-k)
+                variable_signed_pow_jet(s, a, b, r_b) * (-k)
             }
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
-                var_spow_jet(s, lambda, mu, T::zero()) * (-beta)
+                variable_signed_pow_jet(s, lambda, mu, T::zero()) * (-beta)
             }
         }
     }
@@ -196,8 +198,8 @@ impl<T: Real> Feedback<T> {
     pub fn inverse_closed_form(&self, y: T) -> Option<T> {
         match *self {
             Feedback::Linear { k } => Some(-y / k),
-            // Erratum (docs/errata.md, eq. nfn): s_fn = z1 + sign(z2) |z2 / k|^(1/p), not (1/k)|z2|^(1/p).
-            Feedback::FiniteTime { k, p } => Some(-spow(y / k, T::one() / p)),
+            // Erratum (docs/errata.md, eq. (39) (nfn)): s_fn = z1 + sign(z2) |z2 / k|^(1/p), not (1/k)|z2|^(1/p).
+            Feedback::FiniteTime { k, p } => Some(-signed_pow(y / k, T::one() / p)),
             _ => None,
         }
     }
@@ -206,15 +208,15 @@ impl<T: Real> Feedback<T> {
 /// The signed power `|x|^p sign(x)` (the paper's `⌈x⌋^p`); 0 at 0.
 ///
 /// ```
-/// use famcc_core::feedback::spow;
-/// assert_eq!(spow(-4.0_f64, 0.5), -2.0);
+/// use famcc_core::feedback::signed_pow;
+/// assert_eq!(signed_pow(-4.0_f64, 0.5), -2.0);
 /// ```
 #[inline]
-pub fn spow<T: Real>(x: T, p: T) -> T {
+pub fn signed_pow<T: Real>(x: T, p: T) -> T {
     if x > T::zero() {
-        x.powr(p)
+        x.pow_nonneg(p)
     } else if x < T::zero() {
-        -(-x).powr(p)
+        -(-x).pow_nonneg(p)
     } else {
         T::zero()
     }
@@ -243,7 +245,7 @@ fn var_exponent<T: Real>(s: T, a: T, b: T, r0: T) -> T {
 /// singular power is a plain [`Jet::powf`]. For `|s| > 1` it is
 /// `exp((a/(b + w^2) + r0) ln|s|)` with `w = 1/s`.
 #[inline]
-fn var_spow_jet<T: Real, const K: usize>(s: Jet<T, K>, a: T, b: T, r0: T) -> Jet<T, K> {
+fn variable_signed_pow_jet<T: Real, const K: usize>(s: Jet<T, K>, a: T, b: T, r0: T) -> Jet<T, K> {
     let s0 = s.value();
     if s0 == T::zero() {
         // Only the exponent's value matters at 0 (see `Jet::signed_pow_jet`).
@@ -281,7 +283,7 @@ fn x_ln_abs_x<T: Real, const K: usize>(s: Jet<T, K>) -> Jet<T, K> {
         *ck = if k == 0 {
             s0 * s0.abs().ln()
         } else {
-            rate.get(k - 1).copied().unwrap_or_else(T::zero) / T::c(k as f64)
+            rate.get(k - 1).copied().unwrap_or_else(T::zero) / T::from_f64(k as f64)
         };
     }
     Jet::from_taylor(c)
@@ -298,7 +300,7 @@ fn x_ln_abs_x<T: Real, const K: usize>(s: Jet<T, K>) -> Jet<T, K> {
 /// at the right end). Not finite (so the law is rejected) for invalid inputs.
 fn ve_monotonicity_margin<T: Real>(a: T, b: T, r_b: T) -> T {
     let one = T::one();
-    let two = T::c(2.0);
+    let two = T::from_f64(2.0);
     let c = two * r_b * b / a;
     let psi = |v: T| v + two + two * b * v.exp() + c * (one + b * v.exp());
     let mut hi = -two - c;

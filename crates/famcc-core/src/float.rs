@@ -10,36 +10,42 @@ use core::fmt::Debug;
 ///
 /// ```
 /// use famcc_core::Real;
-/// assert_eq!(<f64 as Real>::c(0.5) * 2.0, 1.0);
+/// assert_eq!(<f32 as Real>::from_f64(0.5) * 2.0, 1.0);
+/// assert_eq!(3.0_f64.pow_nonneg(2.0), 9.0);
 /// ```
 pub trait Real:
     num_traits::Float + num_traits::FloatConst + Copy + Default + Debug + PartialOrd + 'static
 {
-    /// Converts an `f64` constant (exact for `f64`, rounded for `f32`).
-    fn c(x: f64) -> Self;
+    /// Converts an `f64` (a constant or a caller's value): exact for `f64`,
+    /// rounded to nearest for `f32`.
+    fn from_f64(x: f64) -> Self;
     /// Converts to `f64` (exact).
     fn to_f64_lossless(self) -> f64;
+    /// Converts a count, rounded to nearest: the same value as
+    /// `from_f64(n as f64)` for every `n < 2^53`, without going through
+    /// `f64` (a soft-float conversion on an FPU without double precision).
+    fn from_u64(n: u64) -> Self;
     /// Square root. Hook for targets with a hardware square root.
     #[inline(always)]
     fn root(self) -> Self {
         num_traits::Float::sqrt(self)
     }
-    /// `self^p` for `self >= 0`, with exact fast paths for the exponents the
-    /// paper's laws use (`1/2`, `1`, `3/2`, `2`, `3`): a square root or
-    /// products instead of a general `pow`.
+    /// `self^p` for a non-negative base, with exact fast paths for the
+    /// exponents the paper's laws use (`1/2`, `1`, `3/2`, `2`, `3`): a square
+    /// root or products instead of a general `pow`.
     #[inline(always)]
-    fn powr(self, p: Self) -> Self {
-        let half = Self::c(0.5);
-        let two = Self::c(2.0);
+    fn pow_nonneg(self, p: Self) -> Self {
+        let half = Self::from_f64(0.5);
+        let two = Self::from_f64(2.0);
         if p == half {
             self.root()
         } else if p == two {
             self * self
         } else if p == Self::one() {
             self
-        } else if p == Self::c(1.5) {
+        } else if p == Self::from_f64(1.5) {
             self * self.root()
-        } else if p == Self::c(3.0) {
+        } else if p == Self::from_f64(3.0) {
             self * self * self
         } else {
             num_traits::Float::powf(self, p)
@@ -52,8 +58,12 @@ pub trait Real:
 
 impl Real for f64 {
     #[inline(always)]
-    fn c(x: f64) -> Self {
+    fn from_f64(x: f64) -> Self {
         x
+    }
+    #[inline(always)]
+    fn from_u64(n: u64) -> Self {
+        n as f64
     }
     #[inline(always)]
     fn to_f64_lossless(self) -> f64 {
@@ -67,8 +77,23 @@ impl Real for f64 {
 
 impl Real for f32 {
     #[inline(always)]
-    fn c(x: f64) -> Self {
+    fn from_f64(x: f64) -> Self {
         x as f32
+    }
+    #[inline(always)]
+    fn from_u64(n: u64) -> Self {
+        // Both forms round the exact integer once while n < 2^53, so they give
+        // the same value. Direct on Arm, where an FPU without double precision
+        // would make the f64 step a soft-float call; through f64 elsewhere,
+        // where that is the cheaper instruction sequence.
+        #[cfg(target_arch = "arm")]
+        {
+            n as f32
+        }
+        #[cfg(not(target_arch = "arm"))]
+        {
+            (n as f64) as f32
+        }
     }
     #[inline(always)]
     fn to_f64_lossless(self) -> f64 {

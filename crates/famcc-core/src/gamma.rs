@@ -1,5 +1,5 @@
 //! The odd maps `Gamma: (-1, 1) -> R` of the control law `v = -k_u Gamma(xi)`
-//! (paper eq. uT).
+//! (paper eq. (29) (uT)).
 //!
 //! ```
 //! use famcc_core::Gamma;
@@ -10,7 +10,7 @@
 
 use crate::Real;
 
-/// The map `Gamma` of eq. (uT).
+/// The map `Gamma` of eq. (29) (uT).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Gamma {
     /// `ln((1 + xi)/(1 - xi)) = 2 atanh(xi)`.
@@ -31,7 +31,7 @@ impl Gamma {
     pub fn eval<T: Real>(self, xi: T) -> T {
         match self {
             Gamma::Log => {
-                let g = T::c(2.0) * xi.abs().atanh();
+                let g = T::from_f64(2.0) * xi.abs().atanh();
                 if xi < T::zero() {
                     -g
                 } else {

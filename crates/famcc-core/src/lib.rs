@@ -7,24 +7,37 @@
 //! constraint based output feedback control for input-constrained uncertain
 //! nonlinear systems").
 //!
-//! This crate is `no_std` (unless the `std` feature is on), allocation-free
-//! and generic over `f32`/`f64` ([`Real`]) and the system order (const `N`).
-//! Each paper concept has one module:
+//! This crate is `no_std`, allocation-free and generic over `f32`/`f64`
+//! ([`Real`]) and the system order (const `N`). Each paper concept has one
+//! module (equation numbers as printed in the paper, LaTeX labels in
+//! parentheses; the map is docs/equations.md):
 //!
 //! | module | paper |
 //! |---|---|
-//! | [`transition`] | Definitions 1-3, eqs. trnsT, trnsS, trnsU |
-//! | [`envelope`] | eq. rho, the latch of eqs. xUxL/yUyL |
-//! | [`gamma`] | the maps Gamma of eq. uT |
-//! | [`jet`] | time derivatives for eq. ISFM |
-//! | [`feedback`] | h_p: eqs. lfmi, fn, RFCs, fxe, fvec |
-//! | [`skew`] | eqs. SSMD, NSMD |
-//! | [`manifold`] | eq. IS |
-//! | [`constraint`] | eqs. gradient, xyc, xi |
-//! | [`flexible`] | eqs. WxyUxyL, Wxi |
-//! | `differentiator` | eq. HGD |
-//! | [`controller`] | eqs. uT, WuT, uOF |
+//! | [`transition`] | Definitions 1-3, eqs. (1)-(3) (trnsT, trnsS, trnsU) |
+//! | [`envelope`] | eq. (4) (rho), the latch after eqs. (21)-(22) (xUxL, yUyL) |
+//! | [`gamma`] | the maps Gamma of eq. (29) (uT) |
+//! | [`jet`] | time derivatives for eq. (12) (ISFM) |
+//! | [`feedback`] | h_p: eqs. (59) lfmi, (37) fn, (61) RFCs, (45) fxe, (58) fvec |
+//! | [`skew`] | eqs. (14) SSMD, (15) NSMD |
+//! | [`manifold`] | eq. (11) (IS) |
+//! | [`constraint`] | eqs. (21)-(22), (26)-(28) (gradient, xyc, xi), (30)-(31) (WxyUxyL, Wxi) |
+//! | [`differentiator`] | eq. (34) (HGD) |
+//! | [`config`] | the parameters and their rules, the defaults |
+//! | [`controller`] | eqs. (29) uT, (32) WuT, (35) uOF |
 //! | [`bounds`] | Corollaries 1-3 |
+//!
+//! ```
+//! use famcc_core::{Config, Constraint, Controller, Feedback, HighGain};
+//! let cfg = Config::<f32, 2>::builder(1e-3, &[(Feedback::FiniteTime { k: 1.0, p: 0.5 }, None)],
+//!                                     Constraint::Lateral { eps: 0.1 }, 5.0)
+//!     .differentiator(Some(HighGain::paper()))
+//!     .build()?;
+//! let mut ctrl = Controller::new(cfg);
+//! let v = ctrl.step(-1.0)?;           // Result<f32, StepError>, never NaN
+//! # assert!(v.is_finite());
+//! # Ok::<(), Box<dyn core::error::Error>>(())
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![cfg_attr(
@@ -38,11 +51,11 @@
 )]
 #![warn(missing_docs)]
 
-#[cfg(any(test, feature = "std"))]
+#[cfg(test)]
 extern crate std;
 
 pub mod bounds;
-mod config;
+pub mod config;
 pub mod constraint;
 pub mod controller;
 pub mod design;
@@ -50,7 +63,6 @@ pub mod differentiator;
 pub mod envelope;
 pub mod error;
 pub mod feedback;
-pub mod flexible;
 mod float;
 pub mod gamma;
 pub mod jet;
@@ -58,9 +70,9 @@ pub mod manifold;
 pub mod skew;
 pub mod transition;
 
-pub use config::{Config, Constraint};
-pub use constraint::ConstraintKind;
-pub use controller::{Controller, Diagnostics, Snapshot};
+pub use config::{Config, ConfigBuilder};
+pub use constraint::Constraint;
+pub use controller::{Controller, Diagnostics, Snapshot, SNAPSHOT_FIELDS};
 pub use differentiator::{DiscreteHgd, Discretization, HighGain};
 pub use envelope::{Envelope, Latch};
 pub use error::{ConfigError, StepError};

@@ -1,4 +1,4 @@
-//! The iterative fully actuated manifold (paper eq. IS / ISFM).
+//! The iterative fully actuated manifold (paper eq. (11) (IS) / ISFM).
 //!
 //! `s_1 = z1`, `s_{i+1} = d/dt s_i - h_mi(s_i)` for `i = 1..n-1`, `s = s_n`.
 //! The error vector `Z = (z1, ..., zn)` is the derivative list of `z1`, so
@@ -7,7 +7,7 @@
 //!
 //! ```
 //! use famcc_core::{manifold, Feedback, SkewedLaw};
-//! // Linear law, order 3: s = (d/dt + 2)(d/dt + 3) z1 = z3 + 5 z2 + 6 z1 (eq. LFAM).
+//! // Linear law, order 3: s = (d/dt + 2)(d/dt + 3) z1 = z3 + 5 z2 + 6 z1 (eq. (60) (LFAM)).
 //! let stages = [
 //!     SkewedLaw::new(Feedback::Linear { k: 2.0_f64 }, None).unwrap(),
 //!     SkewedLaw::new(Feedback::Linear { k: 3.0 }, None).unwrap(),
@@ -21,7 +21,7 @@ use crate::{Jet, Real, SkewedLaw};
 /// The manifold values for one error vector.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Manifold<T, const N: usize> {
-    /// `s_1, ..., s_n` (eq. IS).
+    /// `s_1, ..., s_n` (eq. (11) (IS)).
     pub stages: [T; N],
     /// `s_{n-1}` (equals `z1` at order 2; 0 at order 1).
     pub s_prev: T,

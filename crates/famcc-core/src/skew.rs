@@ -1,7 +1,7 @@
 //! Skewed manifolds `h_m` built on a feedback law `h_p` (paper Step B2).
 //!
-//! - SSMD, eq. (SSMD): `h_m(s) = h_p(s) + T1(s) eps_s`.
-//! - NSMD, eq. (NSMD): `h_m(s) = T2(s) (h_p(s) + T1(s) eps_s) - (1 - T2(s)) k_p s`,
+//! - SSMD, eq. (14) (SSMD): `h_m(s) = h_p(s) + T1(s) eps_s`.
+//! - NSMD, eq. (15) (NSMD): `h_m(s) = T2(s) (h_p(s) + T1(s) eps_s) - (1 - T2(s)) k_p s`,
 //!
 //! with `T1(s) = 1 - 2 S((s + eps_z)/(2 eps_z))` (+1 below `-eps_z`, -1 above
 //! `eps_z`), `T2(s) = U(s/eps_z)` (0 at 0, 1 outside `±eps_z`) and
@@ -67,7 +67,8 @@ impl<T: Real> Skew<T> {
         }
     }
 
-    fn validate(&self) -> Result<(), ConfigError> {
+    /// Checks `eps_s > 0`, `eps_z > 0` and (NSMD) `k_pp > 0`, all finite.
+    pub fn validate(&self) -> Result<(), ConfigError> {
         positive(self.eps_s, "eps_s")?;
         positive(self.eps_z, "eps_z")?;
         if let SkewKind::Nonsingular { k_pp } = self.kind {
@@ -135,8 +136,8 @@ impl<T: Real> SkewedLaw<T> {
         let Some(sk) = self.skew else {
             return self.feedback.eval(s);
         };
-        let two = T::c(2.0);
-        let t1 = T::one() - two * sk.transition.double((s + sk.eps_z) / (two * sk.eps_z));
+        let two = T::from_f64(2.0);
+        let t1 = T::one() - two * sk.transition.double_ended((s + sk.eps_z) / (two * sk.eps_z));
         match sk.kind {
             SkewKind::Smooth => self.feedback.eval(s) + t1 * sk.eps_s,
             SkewKind::Nonsingular { .. } => {
@@ -157,8 +158,8 @@ impl<T: Real> SkewedLaw<T> {
         let Some(sk) = self.skew else {
             return self.feedback.eval_jet(s);
         };
-        let two = T::c(2.0);
-        let t1 = -sk.transition.double_jet((s + sk.eps_z) / (two * sk.eps_z)) * two + T::one();
+        let two = T::from_f64(2.0);
+        let t1 = -sk.transition.double_ended_jet((s + sk.eps_z) / (two * sk.eps_z)) * two + T::one();
         match sk.kind {
             SkewKind::Smooth => self.feedback.eval_jet(s) + t1 * sk.eps_s,
             SkewKind::Nonsingular { .. } => {

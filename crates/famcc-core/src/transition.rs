@@ -1,12 +1,14 @@
-//! Smooth transition functions (paper Definitions 1-3).
+//! Smooth transition functions (paper Definitions 1-3), named as the paper
+//! names them.
 //!
-//! - [`single`] is the single-ended `T(z)` of eq. (trnsT): 0 for `z <= 0`,
-//!   `exp((z-1)/z)` for `z > 0`, so `T(1) = 1`.
-//! - [`Transition::double`] is a double-ended `S(z)`: 0 for `z <= 0`, 1 for
-//!   `z >= 1`, nondecreasing. [`Transition::Exponential`] is the paper's
-//!   C-infinity eq. (trnsS); `Cubic` (C1), `Quintic` (C2) and `Sine` (C1) are
-//!   cheaper alternatives (the authors' code offers the same four).
-//! - [`Transition::interval`] is `U(z) = S(|z|)` of eq. (trnsU).
+//! - [`single_ended`] is the single-ended `T(z)` of eq. (1) (trnsT): 0 for
+//!   `z <= 0`, `exp((z-1)/z)` for `z > 0`, so `T(1) = 1`.
+//! - [`Transition::double_ended`] is a double-ended `S(z)`: 0 for `z <= 0`, 1
+//!   for `z >= 1`, nondecreasing. [`Transition::Exponential`] is the paper's
+//!   C-infinity eq. (2) (trnsS); `Cubic` (C1), `Quintic` (C2) and `Sine` (C1)
+//!   are cheaper alternatives (the authors' code offers the same four).
+//! - [`Transition::interval`] is the interval transition `U(z) = S(|z|)` of
+//!   eq. (3) (trnsU).
 //!
 //! All functions are dimensionless and return finite values for every finite
 //! input: where `exp` would underflow (the function is below the smallest
@@ -14,9 +16,9 @@
 //!
 //! ```
 //! use famcc_core::transition::{self, Transition};
-//! assert_eq!(transition::single(1.0_f64), 1.0);
-//! assert!((Transition::Exponential.double(0.5_f64) - 0.5).abs() < 1e-15);
-//! assert!((Transition::Cubic.double(0.25_f64) - 0.15625).abs() < 1e-15);
+//! assert_eq!(transition::single_ended(1.0_f64), 1.0);
+//! assert!((Transition::Exponential.double_ended(0.5_f64) - 0.5).abs() < 1e-15);
+//! assert!((Transition::Cubic.double_ended(0.25_f64) - 0.15625).abs() < 1e-15);
 //! ```
 
 use crate::{Jet, Real};
@@ -24,7 +26,7 @@ use crate::{Jet, Real};
 /// Which double-ended smooth transition `S(z)` to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Transition {
-    /// The paper's eq. (trnsS): `1 / (exp((1-2z)/(z(1-z))) + 1)`, C-infinity.
+    /// The paper's eq. (2) (trnsS): `1 / (exp((1-2z)/(z(1-z))) + 1)`, C-infinity.
     #[default]
     Exponential,
     /// `3z^2 - 2z^3`: continuous first derivative.
@@ -36,16 +38,16 @@ pub enum Transition {
     Sine,
 }
 
-/// The single-ended transition `T(z)` of eq. (trnsT), extended by the same
-/// formula for `z > 1` (it keeps increasing towards `e`).
+/// The single-ended transition `T(z)` of eq. (1) (trnsT, Definition 1),
+/// extended by the same formula for `z > 1` (it keeps increasing towards `e`).
 ///
 /// ```
-/// use famcc_core::transition::single;
-/// assert_eq!(single(-3.0_f64), 0.0);
-/// assert!((single(0.5_f64) - (-1.0_f64).exp()).abs() < 1e-15);
+/// use famcc_core::transition::single_ended;
+/// assert_eq!(single_ended(-3.0_f64), 0.0);
+/// assert!((single_ended(0.5_f64) - (-1.0_f64).exp()).abs() < 1e-15);
 /// ```
 #[inline]
-pub fn single<T: Real>(z: T) -> T {
+pub fn single_ended<T: Real>(z: T) -> T {
     if z <= T::zero() {
         return T::zero();
     }
@@ -57,37 +59,38 @@ pub fn single<T: Real>(z: T) -> T {
     }
 }
 
-/// [`single`] on a jet: `T(z(t))` with its time derivatives.
+/// [`single_ended`] on a jet: `T(z(t))` with its time derivatives.
 #[inline]
-pub fn single_jet<T: Real, const K: usize>(z: Jet<T, K>) -> Jet<T, K> {
+pub fn single_ended_jet<T: Real, const K: usize>(z: Jet<T, K>) -> Jet<T, K> {
     let z0 = z.value();
     if z0 <= T::zero() {
         return Jet::constant(T::zero());
     }
-    // Flat only far below the underflow threshold (see `double_jet`): the
+    // Flat only far below the underflow threshold (see `double_ended_jet`): the
     // derivatives can be normal numbers where `T` itself is subnormal.
-    if (z0 - T::one()) / z0 < T::c(2.0) * T::ln_min_positive() {
+    if (z0 - T::one()) / z0 < T::from_f64(2.0) * T::ln_min_positive() {
         return Jet::constant(T::zero());
     }
     ((z - T::one()) / z).exp()
 }
 
 impl Transition {
-    /// The double-ended transition `S(z)` (Definition 2).
+    /// The double-ended transition `S(z)` (Definition 2, eq. (2) for
+    /// [`Transition::Exponential`]).
     ///
     /// For `z > 1/2` it is evaluated as `1 - S(1 - z)` (exact symmetry of all
     /// four transitions; `1 - z` is exact there), which keeps `S <= 1` (the
     /// quintic's direct form exceeds 1 just below `z = 1`) and makes
     /// `S(z) + S(1 - z) = 1` hold to rounding.
     #[inline]
-    pub fn double<T: Real>(self, z: T) -> T {
+    pub fn double_ended<T: Real>(self, z: T) -> T {
         if z <= T::zero() {
             return T::zero();
         }
         if z >= T::one() {
             return T::one();
         }
-        if z > T::c(0.5) {
+        if z > T::from_f64(0.5) {
             return T::one() - self.rising(T::one() - z);
         }
         self.rising(z)
@@ -97,7 +100,7 @@ impl Transition {
     #[inline]
     fn rising<T: Real>(self, z: T) -> T {
         let one = T::one();
-        let two = T::c(2.0);
+        let two = T::from_f64(2.0);
         match self {
             Transition::Exponential => {
                 // w >= 0: S = q / (1 + q) with q = exp(-w) <= 1.
@@ -108,8 +111,10 @@ impl Transition {
                 let q = (-w).exp();
                 q / (one + q)
             }
-            Transition::Cubic => z * z * (T::c(3.0) - two * z),
-            Transition::Quintic => z * z * z * (z * (z * T::c(6.0) - T::c(15.0)) + T::c(10.0)),
+            Transition::Cubic => z * z * (T::from_f64(3.0) - two * z),
+            Transition::Quintic => {
+                z * z * z * (z * (z * T::from_f64(6.0) - T::from_f64(15.0)) + T::from_f64(10.0))
+            }
             Transition::Sine => {
                 let s = (T::FRAC_PI_2() * z).sin();
                 s * s
@@ -117,7 +122,7 @@ impl Transition {
         }
     }
 
-    /// [`Transition::double`] on a jet: `S(z(t))` with its time derivatives.
+    /// [`Transition::double_ended`] on a jet: `S(z(t))` with its time derivatives.
     ///
     /// For `z > 1/2` it uses the symmetry `S(z) = 1 - S(1 - z)` (exact for all
     /// four transitions), so the derivatives keep their relative accuracy as
@@ -127,7 +132,7 @@ impl Transition {
     /// down that the derivatives have underflowed too; above that the
     /// derivatives are computed even where `S` itself is subnormal.
     #[inline]
-    pub fn double_jet<T: Real, const K: usize>(self, z: Jet<T, K>) -> Jet<T, K> {
+    pub fn double_ended_jet<T: Real, const K: usize>(self, z: Jet<T, K>) -> Jet<T, K> {
         let z0 = z.value();
         if z0 <= T::zero() {
             return Jet::constant(T::zero());
@@ -135,7 +140,7 @@ impl Transition {
         if z0 >= T::one() {
             return Jet::constant(T::one());
         }
-        if z0 > T::c(0.5) {
+        if z0 > T::from_f64(0.5) {
             // 1 - z0 is exact here (Sterbenz).
             return -self.rising_jet(-z + T::one()) + T::one();
         }
@@ -146,7 +151,7 @@ impl Transition {
     #[inline]
     fn rising_jet<T: Real, const K: usize>(self, z: Jet<T, K>) -> Jet<T, K> {
         let one = T::one();
-        let two = T::c(2.0);
+        let two = T::from_f64(2.0);
         match self {
             Transition::Exponential => {
                 let z0 = z.value();
@@ -158,8 +163,10 @@ impl Transition {
                 // S = 1/(1 + e^w) = logistic(-w) <= 1/2 here.
                 (-w).logistic()
             }
-            Transition::Cubic => z * z * (z * (-two) + T::c(3.0)),
-            Transition::Quintic => z * z * z * (z * (z * T::c(6.0) - T::c(15.0)) + T::c(10.0)),
+            Transition::Cubic => z * z * (z * (-two) + T::from_f64(3.0)),
+            Transition::Quintic => {
+                z * z * z * (z * (z * T::from_f64(6.0) - T::from_f64(15.0)) + T::from_f64(10.0))
+            }
             Transition::Sine => {
                 let (s, _) = (z * T::FRAC_PI_2()).sin_cos();
                 s * s
@@ -167,7 +174,7 @@ impl Transition {
         }
     }
 
-    /// The interval transition `U(z) = S(|z|)` (Definition 3).
+    /// The interval transition `U(z) = S(|z|)` (Definition 3, eq. (3)).
     ///
     /// ```
     /// use famcc_core::transition::Transition;
@@ -177,20 +184,20 @@ impl Transition {
     /// ```
     #[inline]
     pub fn interval<T: Real>(self, z: T) -> T {
-        self.double(z.abs())
+        self.double_ended(z.abs())
     }
 
     /// [`Transition::interval`] on a jet.
     #[inline]
     pub fn interval_jet<T: Real, const K: usize>(self, z: Jet<T, K>) -> Jet<T, K> {
-        self.double_jet(z.abs())
+        self.double_ended_jet(z.abs())
     }
 
     /// The authors' parametrised form `trns(x, x1, x2)`: `S((x - x1)/(x2 - x1))`,
     /// a transition from 0 at `x1` to 1 at `x2` (`x1 > x2` reverses it).
     #[inline]
     pub fn between<T: Real>(self, x: T, x1: T, x2: T) -> T {
-        self.double((x - x1) / (x2 - x1))
+        self.double_ended((x - x1) / (x2 - x1))
     }
 
     /// The time derivative of [`Transition::between`] for moving end points:
@@ -200,18 +207,6 @@ impl Transition {
         let x = Jet::<T, 2>::from_derivatives(x);
         let x1 = Jet::<T, 2>::from_derivatives(x1);
         let x2 = Jet::<T, 2>::from_derivatives(x2);
-        self.double_jet((x - x1) / (x2 - x1)).derivative(1)
+        self.double_ended_jet((x - x1) / (x2 - x1)).derivative(1)
     }
-}
-
-/// The paper's `S(z)` (eq. trnsS), the exponential double-ended transition.
-#[inline]
-pub fn double<T: Real>(z: T) -> T {
-    Transition::Exponential.double(z)
-}
-
-/// The paper's `U(z) = S(|z|)` (eq. trnsU).
-#[inline]
-pub fn interval<T: Real>(z: T) -> T {
-    Transition::Exponential.interval(z)
 }

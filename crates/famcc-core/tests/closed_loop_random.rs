@@ -1,4 +1,4 @@
-//! Closed-loop invariant over random plants of the paper's class (eq. SFS):
+//! Closed-loop invariant over random plants of the paper's class (eq. (5) (SFS)):
 //!
 //! `x_i' = g_i(x_1..x_i, t) x_{i+1} + f_i(x_1..x_i, t)`,
 //! `x_n' = g_n(x, t) u + f_n(x, t)`, `y = x_1`,
@@ -12,7 +12,7 @@
 //! 1 kHz with the flexible boundary on (`rho_e = 0.01`); the plant is
 //! integrated by RK4 with 5 substeps per sample, for 4 s.
 //!
-//! Invariant (eq. |xi|, Theorems 2-3): at every sample `|xi~| < 1`, no clamp
+//! Invariant (eq. (88) (|xi|), Theorems 2-3): at every sample `|xi~| < 1`, no clamp
 //! ever happens, and the output and the plant state stay finite. Settling is
 //! not claimed: with tight limits the accuracy may be out of reach.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
@@ -43,11 +43,11 @@ struct RandomPlant<const N: usize> {
     x0: [f64; N],
 }
 
-impl<const N: usize> Plant<N> for RandomPlant<N> {
-    fn x0(&self) -> [f64; N] {
+impl<const N: usize> TimePlant<N> for RandomPlant<N> {
+    fn initial_state(&self) -> [f64; N] {
         self.x0
     }
-    fn rhs(&self, t: f64, x: &[f64; N], u: f64) -> [f64; N] {
+    fn rate(&self, t: f64, x: &[f64; N], u: f64) -> [f64; N] {
         let mut dx = [0.0; N];
         for i in 0..N {
             let s = &self.stages[i];
@@ -141,12 +141,12 @@ fn run_case<T: Real, const N: usize>(
     mut ctrl: Controller<T, N>,
 ) -> Result<Summary, TestCaseError> {
     let steps = (T_END / DT).round() as usize;
-    let mut x = c.plant.x0();
+    let mut x = c.plant.initial_state();
     let mut s = Summary::default();
     for k in 0..=steps {
         let t = k as f64 * DT;
         let e = x[0] - c.amp * (c.omega * t).sin();
-        let v = ctrl.step(T::c(e));
+        let v = ctrl.step(T::from_f64(e));
         prop_assert!(v.is_ok(), "step failed at t = {}: {:?}", t, v);
         let v = v.unwrap().to_f64_lossless();
         let d = ctrl.diagnostics();

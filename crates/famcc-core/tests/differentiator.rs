@@ -1,4 +1,4 @@
-//! The high-gain differentiator (eq. HGD): discretizations against closed
+//! The high-gain differentiator (eq. (34) (HGD)): discretizations against closed
 //! forms, a fine RK4 reference, the DC gain, stability for every dt, the
 //! Hurwitz rule and f32/f64 agreement.
 #![allow(clippy::needless_range_loop, clippy::unwrap_used, clippy::indexing_slicing)]
@@ -34,7 +34,7 @@ fn binomial<const N: usize>() -> [f64; N] {
     a
 }
 
-/// Continuous eq. HGD right-hand side.
+/// Continuous eq. (34) (HGD) right-hand side.
 fn rhs<const N: usize>(mu: f64, a: &[f64; N], z: &[f64; N], e: f64) -> [f64; N] {
     let mut d = [0.0; N];
     let innov = e - z[0];
@@ -45,7 +45,7 @@ fn rhs<const N: usize>(mu: f64, a: &[f64; N], z: &[f64; N], e: f64) -> [f64; N] 
     d
 }
 
-/// Classical RK4 of eq. HGD over `dt` with `steps` steps and held `e`.
+/// Classical RK4 of eq. (34) (HGD) over `dt` with `steps` steps and held `e`.
 fn rk4<const N: usize>(mu: f64, a: &[f64; N], z0: [f64; N], e: f64, dt: f64, steps: usize) -> [f64; N] {
     let h = dt / steps as f64;
     let mut z = z0;

@@ -146,12 +146,12 @@ const ALL_S: [Transition; 4] = [
 ];
 
 fn s_rate<T: Real>(tr: Transition, z: T, k: usize) -> T {
-    tr.double_jet(Jet::<T, 3>::from_derivatives([z, T::one(), T::zero()]))
+    tr.double_ended_jet(Jet::<T, 3>::from_derivatives([z, T::one(), T::zero()]))
         .derivative(k)
 }
 
 fn t_rate<T: Real>(z: T) -> T {
-    transition::single_jet(Jet::<T, 2>::from_derivatives([z, T::one()])).derivative(1)
+    transition::single_ended_jet(Jet::<T, 2>::from_derivatives([z, T::one()])).derivative(1)
 }
 
 #[test]
@@ -160,15 +160,20 @@ fn transitions_f32_matches_f64() {
     grid.extend(edges(-40, -1));
     grid.extend(scattered(2000, -0.25, 1.25));
     let mut n = 0;
-    n += agree("T", &grid, transition::single::<f64>, transition::single::<f32>);
+    n += agree(
+        "T",
+        &grid,
+        transition::single_ended::<f64>,
+        transition::single_ended::<f32>,
+    );
     n += agree("T'", &grid, t_rate::<f64>, t_rate::<f32>);
     let none = |_: f64| 0.0;
     for tr in ALL_S {
         n += agree_with(
             &format!("{tr:?} S"),
             &grid,
-            |z| tr.double(z),
-            |z| tr.double(z),
+            |z| tr.double_ended(z),
+            |z| tr.double_ended(z),
             none,
             to_ends,
         );
@@ -280,7 +285,7 @@ fn envelope_and_gamma_f32_matches_f64() {
 
 /// The laws with parameters exactly representable in f32.
 fn law<T: Real>(i: usize) -> Feedback<T> {
-    let c = T::c;
+    let c = T::from_f64;
     match i {
         0 => Feedback::Linear { k: c(1.5) },
         1 => Feedback::FiniteTime { k: c(1.0), p: c(0.5) },
@@ -347,9 +352,9 @@ fn feedback_laws_f32_matches_f64() {
 
 fn skewed<T: Real>(i: usize, nsmd: bool) -> SkewedLaw<T> {
     let skew = if nsmd {
-        Skew::nonsingular(T::c(0.25), T::c(0.125), T::c(0.125))
+        Skew::nonsingular(T::from_f64(0.25), T::from_f64(0.125), T::from_f64(0.125))
     } else {
-        Skew::smooth(T::c(0.15625), T::c(0.125))
+        Skew::smooth(T::from_f64(0.15625), T::from_f64(0.125))
     };
     SkewedLaw::new(law(i), Some(skew)).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -363,7 +368,7 @@ fn skewed_rate<T: Real>(i: usize, nsmd: bool, s: T, ds: T) -> T {
 fn skewed_second<T: Real>(i: usize, s: T) -> T {
     // d^2/dt^2 h_m(s(t)) for s' = 1, s'' = -0.5 (NSMD only: SSMD is singular at 0).
     skewed::<T>(i, true)
-        .eval_jet(Jet::<T, 3>::from_derivatives([s, T::one(), T::c(-0.5)]))
+        .eval_jet(Jet::<T, 3>::from_derivatives([s, T::one(), T::from_f64(-0.5)]))
         .derivative(2)
 }
 
@@ -423,7 +428,7 @@ fn skewed_laws_f32_matches_f64() {
                     t2 * hp.eval_jet(st).derivative(2).abs()
                 };
                 let t1 = Transition::Exponential
-                    .double_jet((st + 0.125) / 0.25)
+                    .double_ended_jet((st + 0.125) / 0.25)
                     .derivative(2)
                     .abs()
                     * 2.0;
@@ -434,7 +439,7 @@ fn skewed_laws_f32_matches_f64() {
 }
 
 fn stages<T: Real>() -> [SkewedLaw<T>; 2] {
-    let c = T::c;
+    let c = T::from_f64;
     [
         SkewedLaw::new(
             Feedback::FixedTime {

@@ -918,7 +918,7 @@ fn golden_smooth_tfun1() {
     let c = check(
         &g,
         f64::MIN_POSITIVE,
-        |a| transition::single(a[0]),
+        |a| transition::single_ended(a[0]),
         |a| reference::t_single(a[0]),
         |_, _, _| "unexplained",
     );

@@ -69,14 +69,14 @@ const STEPS: usize = 2000;
 /// Exercises every per-step entry point of a built controller `STEPS` times
 /// and returns the number of heap operations observed (must be 0).
 fn exercise<T: Real, const N: usize>(ctrl: &mut Controller<T, N>) -> usize {
-    let dt = ctrl.config().dt.to_f64_lossless();
+    let dt = ctrl.config().dt().to_f64_lossless();
     let mut acc = T::zero();
     let (_, n) = count(|| {
         for k in 0..STEPS {
             let t = k as f64 * dt;
             // A decaying error with a disturbance, plus the odd wild sample.
             let e = (-t).exp() * 1.5 + 0.05 * (7.0 * t).sin();
-            let v = ctrl.step(T::c(e)).unwrap();
+            let v = ctrl.step(T::from_f64(e)).unwrap();
             acc = acc + v;
             let d = ctrl.diagnostics();
             acc = acc + d.xi + d.s + d.bounds.0 + d.bounds.1;
@@ -84,20 +84,23 @@ fn exercise<T: Real, const N: usize>(ctrl: &mut Controller<T, N>) -> usize {
                 // Rejected inputs take the error path: still no heap.
                 assert_eq!(ctrl.step(T::nan()), Err(StepError::NonFiniteInput));
                 assert_eq!(
-                    ctrl.step_applied(T::c(e), Some(T::infinity())),
+                    ctrl.step_applied(T::from_f64(e), Some(T::infinity())),
                     Err(StepError::NonFiniteApplied)
                 );
-                let _ = ctrl.step_applied(T::c(e), Some(v)).unwrap();
+                let _ = ctrl.step_applied(T::from_f64(e), Some(v)).unwrap();
             }
             if k % 113 == 0 {
-                let _ = ctrl.step_dt(T::c(e), T::c(dt * 1.5), None).unwrap();
-                assert_eq!(ctrl.step_dt(T::c(e), T::zero(), None), Err(StepError::InvalidDt));
+                let _ = ctrl.step_dt(T::from_f64(e), T::from_f64(dt * 1.5), None).unwrap();
+                assert_eq!(
+                    ctrl.step_dt(T::from_f64(e), T::zero(), None),
+                    Err(StepError::InvalidDt)
+                );
             }
             if k % 251 == 0 {
                 let snap = ctrl.snapshot();
-                let next = ctrl.step(T::c(e)).unwrap();
+                let next = ctrl.step(T::from_f64(e)).unwrap();
                 ctrl.restore(&snap).unwrap();
-                assert_eq!(ctrl.step(T::c(e)).unwrap(), next);
+                assert_eq!(ctrl.step(T::from_f64(e)).unwrap(), next);
                 let _ = black_box(ctrl.estimate());
                 let _ = black_box(ctrl.time());
             }
@@ -108,14 +111,14 @@ fn exercise<T: Real, const N: usize>(ctrl: &mut Controller<T, N>) -> usize {
             let t = k as f64 * dt;
             let mut z = [T::zero(); N];
             for (i, zi) in z.iter_mut().enumerate() {
-                *zi = T::c((-t).exp() * if i % 2 == 0 { 1.0 } else { -1.0 });
+                *zi = T::from_f64((-t).exp() * if i % 2 == 0 { 1.0 } else { -1.0 });
             }
             acc = acc + ctrl.step_state(z).unwrap();
             acc = acc + ctrl.step_state_applied(z, Some(acc)).unwrap_or(T::zero());
             acc = acc + black_box(ctrl.diagnostics()).v;
         }
         ctrl.reset();
-        let _ = black_box(ctrl.step(T::c(0.3)));
+        let _ = black_box(ctrl.step(T::from_f64(0.3)));
         ctrl.reset();
     });
     black_box(acc);
@@ -129,63 +132,64 @@ fn oblique<T: Real, const N: usize>(limits: bool) -> Config<T, N> {
         if i % 2 == 0 {
             (
                 Feedback::VariableExponent {
-                    k: T::c(1.5),
-                    r_b: T::c(0.5),
-                    r_1: T::c(2.0),
-                    r_t: T::c(3.0),
+                    k: T::from_f64(1.5),
+                    r_b: T::from_f64(0.5),
+                    r_1: T::from_f64(2.0),
+                    r_t: T::from_f64(3.0),
                 },
-                Some(Skew::nonsingular(T::c(0.2), T::c(0.1), T::c(0.5))),
+                Some(Skew::nonsingular(
+                    T::from_f64(0.2),
+                    T::from_f64(0.1),
+                    T::from_f64(0.5),
+                )),
             )
         } else {
             (
                 Feedback::FixedTime {
-                    alpha: T::c(1.0),
-                    p: T::c(0.6),
-                    beta: T::c(0.5),
-                    q: T::c(1.5),
+                    alpha: T::from_f64(1.0),
+                    p: T::from_f64(0.6),
+                    beta: T::from_f64(0.5),
+                    q: T::from_f64(1.5),
                 },
-                Some(Skew::nonsingular(T::c(0.3), T::c(0.2), T::c(1.0))),
+                Some(Skew::nonsingular(
+                    T::from_f64(0.3),
+                    T::from_f64(0.2),
+                    T::from_f64(1.0),
+                )),
             )
         }
     };
     let laws: [_; 3] = [stage(0), stage(1), stage(2)];
-    let mut cfg = Config::<T, N>::new(
-        T::c(1e-3),
-        &laws[..N - 1],
-        Constraint::Oblique {
-            eps_x: T::c(0.1),
-            eps_y: T::c(0.2),
-        },
-        T::c(1.0),
-        T::c(5.0),
-    )
-    .unwrap();
+    let constraint = Constraint::Oblique {
+        eps_x: T::from_f64(0.1),
+        eps_y: T::from_f64(0.2),
+    };
     let mut a = [T::zero(); N];
     // (s + 2)^N
     let mut binom = 1.0;
     for (i, ai) in a.iter_mut().enumerate() {
         binom = binom * (N - i) as f64 / (i + 1) as f64;
-        *ai = T::c(binom * 2f64.powi(i as i32 + 1));
+        *ai = T::from_f64(binom * 2f64.powi(i as i32 + 1));
     }
-    cfg.differentiator = Some(HighGain::new(T::c(0.01), a, Discretization::Tustin));
-    cfg.gamma = Gamma::Rational;
-    cfg.latch = Latch::Authors;
-    if limits {
-        cfg.estimate_limits = Some([T::c(5.0); N]);
-    }
-    cfg
+    Config::builder(T::from_f64(1e-3), &laws[..N - 1], constraint, T::from_f64(5.0))
+        .differentiator(Some(HighGain::new(T::from_f64(0.01), a, Discretization::Tustin)))
+        .gamma(Gamma::Rational)
+        .latch(Latch::Authors)
+        .estimate_limits(limits.then_some([T::from_f64(5.0); N]))
+        .build()
+        .unwrap()
 }
 
 fn with_limits<T: Real, const N: usize>(ctrl: &Controller<T, N>, l: [f64; N]) -> Controller<T, N> {
-    let mut cfg = *ctrl.config();
-    cfg.estimate_limits = Some(l.map(T::c));
-    Controller::new(cfg).unwrap()
+    let cfg = ctrl
+        .config()
+        .to_builder()
+        .estimate_limits(Some(l.map(T::from_f64)));
+    Controller::new(cfg.build().unwrap())
 }
 
 fn without_flexible<T: Real, const N: usize>(ctrl: &Controller<T, N>) -> Controller<T, N> {
-    let mut cfg = *ctrl.config();
-    cfg.rho_e = None;
-    Controller::new(cfg).unwrap()
+    Controller::new(ctrl.config().to_builder().rho_e(None).build().unwrap())
 }
 
 #[test]
@@ -202,7 +206,7 @@ fn no_heap_allocation_anywhere_in_the_controller() {
         black_box(example2::<f64>(Variant::Code, 1e-3));
         black_box(example3::<f64>(Variant::Code, 1e-3));
         black_box(example3::<f32>(Variant::Paper, 1e-3));
-        black_box(Controller::new(oblique::<f64, 4>(true)).unwrap());
+        black_box(Controller::new(oblique::<f64, 4>(true)));
     });
     assert_eq!(n, 0, "construction allocated {n} times");
 
@@ -220,7 +224,7 @@ fn no_heap_allocation_anywhere_in_the_controller() {
         ("example1 f64 no rho_e", without_flexible(&e1)),
         ("example2 f64", e2),
         ("example2 f64 limits", with_limits(&e2, [2.0, 5.0])),
-        ("oblique f64 N=2", Controller::new(oblique(false)).unwrap()),
+        ("oblique f64 N=2", Controller::new(oblique(false))),
     ];
     let mut cases2f: Vec<(&str, Controller<f32, 2>)> = vec![
         ("example1 f32", e1f),
@@ -234,15 +238,15 @@ fn no_heap_allocation_anywhere_in_the_controller() {
         ("example3 paper f64", e3p),
         ("example3 paper f64 limits", with_limits(&e3p, [3.0, 5.0, 20.0])),
         ("example3 f64 no rho_e", without_flexible(&e3)),
-        ("oblique f64 N=3", Controller::new(oblique(true)).unwrap()),
+        ("oblique f64 N=3", Controller::new(oblique(true))),
     ];
     let mut cases3f: Vec<(&str, Controller<f32, 3>)> = vec![
         ("example3 code f32", e3f),
         ("example3 code f32 limits", with_limits(&e3f, [3.0, 5.0, 20.0])),
     ];
     let mut cases4: Vec<(&str, Controller<f64, 4>)> = vec![
-        ("oblique f64 N=4", Controller::new(oblique(false)).unwrap()),
-        ("oblique f64 N=4 limits", Controller::new(oblique(true)).unwrap()),
+        ("oblique f64 N=4", Controller::new(oblique(false))),
+        ("oblique f64 N=4 limits", Controller::new(oblique(true))),
     ];
 
     let mut failures = Vec::new();

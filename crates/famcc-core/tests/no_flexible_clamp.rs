@@ -1,4 +1,4 @@
-//! Without the flexible boundary (`rho_e = None`, the controller of eq. uT)
+//! Without the flexible boundary (`rho_e = None`, the controller of eq. (29) (uT))
 //! nothing keeps a sampled loop inside `|xi| < 1`: a too slow sample rate or a
 //! disturbance beyond the design pushes `|xi|` to 1 between samples. By
 //! docs/design.md §3.6 the controller then clamps `xi` just below 1, counts
@@ -23,22 +23,21 @@ mod common;
 
 use common::*;
 use famcc_core::{Config, Constraint, Controller, Feedback, Gamma, Real};
+use famcc_paper::plants::{Clock, Drift, Signal};
 
 /// Example-1 plant with the disturbance amplitude as a parameter (the
 /// authors' plant is `Scaled(3.0)`).
 struct Scaled(f64);
 
-impl Plant<2> for Scaled {
+impl Plant<f64, 2> for Scaled {
     fn x0(&self) -> [f64; 2] {
         Second(Variant::Code).x0()
     }
-    fn rhs(&self, t: f64, x: &[f64; 2], u: f64) -> [f64; 2] {
-        let (x1, x2) = (x[0], x[1]);
-        [
-            (1.0 + 0.1 * x1.cos() + 0.1 * t.sin()) * x2 - x1 + t.sin(),
-            (2.0 + 0.2 * (x1 * x2).sin() + 0.1 * t.cos()) * u - (x1 * x1 - 1.0) * x2
-                + self.0 * (t.sin() + (2.0 * t).cos()),
-        ]
+    fn terms<S: Signal<f64>>(&self, c: &Clock<S>, x: &[S; 2]) -> [(S, Drift<S>); 2] {
+        // The paper's plant with amplitude 1, and its disturbance scaled.
+        let [row1, (g2, [f2, _, _])] = Second(Variant::Paper).terms(c, x);
+        let extra = (c.sin + c.cos2) * (self.0 - 1.0);
+        [row1, (g2, [f2, extra, S::constant(0.0)])]
     }
 }
 
@@ -56,18 +55,18 @@ struct Outcome {
 /// where `xi` was clamped (without the flexible boundary `xi = xi_nominal`
 /// unless clamped), with the clamped value just below 1 and the output
 /// `-k_u Gamma(xi)`. Stops early if the plant escapes (`|x| > 1e6`).
-fn run_checked<T: Real, const N: usize, P: Plant<N>>(
+fn run_checked<T: Real, const N: usize, P: TimePlant<N>>(
     plant: &P,
     ctrl: &mut Controller<T, N>,
     t_end: f64,
     limits: (f64, f64),
 ) -> Outcome {
     let cfg = *ctrl.config();
-    let flexible = cfg.rho_e.is_some();
-    let dt = cfg.dt.to_f64_lossless();
+    let flexible = cfg.rho_e().is_some();
+    let dt = cfg.dt().to_f64_lossless();
     let eps = T::epsilon();
     let steps = (t_end / dt).round() as usize;
-    let mut x = plant.x0();
+    let mut x = plant.initial_state();
     let mut out = Outcome::default();
     let mut z1 = Vec::with_capacity(steps + 1);
     let mut clamps = 0;
@@ -75,7 +74,7 @@ fn run_checked<T: Real, const N: usize, P: Plant<N>>(
         let t = k as f64 * dt;
         let e = x[0] - t.sin();
         let v = ctrl
-            .step(T::c(e))
+            .step(T::from_f64(e))
             .unwrap_or_else(|err| panic!("step failed at t = {t}: {err}"));
         let d = ctrl.diagnostics();
         assert!(v.is_finite(), "non-finite output at t = {t}");
@@ -87,10 +86,14 @@ fn run_checked<T: Real, const N: usize, P: Plant<N>>(
         if clamped {
             // Clamped to (nearly) the largest value below 1, on the side of
             // the nominal xi, and the output follows from the clamped value.
-            assert!(d.xi.abs() >= T::one() - T::c(2.0) * eps, "clamped to {:?}", d.xi);
+            assert!(
+                d.xi.abs() >= T::one() - T::from_f64(2.0) * eps,
+                "clamped to {:?}",
+                d.xi
+            );
             assert_eq!(d.xi > T::zero(), d.xi_nominal > T::zero());
             assert!(d.xi_nominal.abs() >= d.xi.abs());
-            assert_eq!(v, -cfg.k_u * cfg.gamma.eval(d.xi));
+            assert_eq!(v, -cfg.k_u() * cfg.gamma().eval(d.xi));
         } else if !flexible {
             assert_eq!(d.xi, d.xi_nominal, "xi changed without a clamp at t = {t}");
         }
@@ -123,9 +126,7 @@ fn run_checked<T: Real, const N: usize, P: Plant<N>>(
 }
 
 fn without_rho_e<T: Real, const N: usize>(c: Controller<T, N>) -> Controller<T, N> {
-    let mut cfg = *c.config();
-    cfg.rho_e = None;
-    Controller::new(cfg).unwrap()
+    Controller::new(c.config().to_builder().rho_e(None).build().unwrap())
 }
 
 #[test]
@@ -200,34 +201,36 @@ fn example3_at_50_hz_clamps_and_stays_finite_until_the_plant_escapes() {
 #[test]
 fn clamping_by_state_feedback_is_counted_per_step() {
     fn check<T: Real>(gamma: Gamma) {
-        let mut cfg = Config::<T, 2>::new(
-            T::c(1e-3),
-            &[(Feedback::Linear { k: T::c(2.0) }, None)],
-            Constraint::Longitudinal { eps: T::c(0.1) },
-            T::c(1.0),
-            T::c(5.0),
+        let cfg = Config::<T, 2>::builder(
+            T::from_f64(1e-3),
+            &[(Feedback::Linear { k: T::from_f64(2.0) }, None)],
+            Constraint::Longitudinal {
+                eps: T::from_f64(0.1),
+            },
+            T::from_f64(5.0),
         )
+        .rho_e(None)
+        .gamma(gamma)
+        .build()
         .unwrap();
-        cfg.rho_e = None;
-        cfg.gamma = gamma;
-        let mut c = Controller::new(cfg).unwrap();
+        let mut c = Controller::new(cfg);
         // Latch at s0 = 1: y_U(0) = 2.
-        let v0 = c.step_state([T::c(0.5), T::zero()]).unwrap();
+        let v0 = c.step_state([T::from_f64(0.5), T::zero()]).unwrap();
         assert_eq!(c.diagnostics().clamp_count, 0);
         assert!(v0 < T::zero());
         for (k, big) in [1e3, -1e3, 1e30, -4.0, 3.0].into_iter().enumerate() {
-            let v = c.step_state([T::c(big), T::zero()]).unwrap();
+            let v = c.step_state([T::from_f64(big), T::zero()]).unwrap();
             let d = c.diagnostics();
             assert_eq!(d.clamp_count, k as u64 + 1, "gamma {gamma:?} z1 = {big}");
             assert!(v.is_finite());
-            assert!(d.xi.abs() < T::one() && d.xi.abs() >= T::one() - T::c(2.0) * T::epsilon());
+            assert!(d.xi.abs() < T::one() && d.xi.abs() >= T::one() - T::from_f64(2.0) * T::epsilon());
             assert_eq!(v < T::zero(), big > 0.0, "v = {v:?} for z1 = {big}");
-            assert_eq!(v, -cfg.k_u * gamma.eval(d.xi));
+            assert_eq!(v, -cfg.k_u() * gamma.eval(d.xi));
         }
         // Back inside: no further clamp, the count is kept.
-        c.step_state([T::c(0.01), T::zero()]).unwrap();
+        c.step_state([T::from_f64(0.01), T::zero()]).unwrap();
         assert_eq!(c.diagnostics().clamp_count, 5);
-        assert!(c.diagnostics().xi.abs() < T::c(0.5));
+        assert!(c.diagnostics().xi.abs() < T::from_f64(0.5));
         // reset clears it.
         c.reset();
         assert_eq!(c.diagnostics().clamp_count, 0);

@@ -1,7 +1,7 @@
 //! Property tests of the building blocks: the paper's Definitions 1-3
-//! (transitions), the envelope (eq. rho), the feedback laws (odd, decreasing,
+//! (transitions), the envelope (eq. (4) (rho)), the feedback laws (odd, decreasing,
 //! zero at zero), jet arithmetic (against finite differences and closed forms),
-//! NSMD smoothness at 0 (docs/design.md §4.2), the linear manifold against eq. LFAM,
+//! NSMD smoothness at 0 (docs/design.md §4.2), the linear manifold against eq. (60) (LFAM),
 //! the Gamma maps, and the settling-time bounds of Corollaries 1-3.
 
 use famcc_core::envelope::{rho, Envelope, Latch};
@@ -81,7 +81,7 @@ proptest! {
     /// Definition 1: T = 0 for z <= 0, values in [0, 1] on (-inf, 1].
     #[test]
     fn t_single_zero_left_and_bounded(z in finite_f64()) {
-        let t = transition::single(z);
+        let t = transition::single_ended(z);
         prop_assert!(t.is_finite());
         if z <= 0.0 {
             prop_assert_eq!(t, 0.0);
@@ -95,14 +95,14 @@ proptest! {
     #[test]
     fn t_single_nondecreasing(a in -2.0..3.0f64, b in -2.0..3.0f64) {
         let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
-        prop_assert!(transition::single(lo) <= transition::single(hi));
+        prop_assert!(transition::single_ended(lo) <= transition::single_ended(hi));
     }
 
     /// Definition 2 for every S variant: 0 for z <= 0, 1 for z >= 1, values in [0, 1].
     #[test]
     fn s_flat_outside_and_bounded(z in finite_f64()) {
         for tr in ALL_S {
-            let s = tr.double(z);
+            let s = tr.double_ended(z);
             prop_assert!(s.is_finite());
             prop_assert!((0.0..=1.0).contains(&s), "{tr:?} S({z}) = {s}");
             if z <= 0.0 {
@@ -119,7 +119,7 @@ proptest! {
     fn s_nondecreasing(a in -0.5..1.5f64, b in -0.5..1.5f64) {
         let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
         for tr in ALL_S {
-            prop_assert!(tr.double(lo) <= tr.double(hi), "{tr:?} at {lo}, {hi}");
+            prop_assert!(tr.double_ended(lo) <= tr.double_ended(hi), "{tr:?} at {lo}, {hi}");
         }
     }
 
@@ -128,7 +128,7 @@ proptest! {
     #[test]
     fn s_point_symmetry(z in -0.5..1.5f64) {
         for tr in ALL_S {
-            let sum = tr.double(z) + tr.double(1.0 - z);
+            let sum = tr.double_ended(z) + tr.double_ended(1.0 - z);
             prop_assert!((sum - 1.0).abs() <= 4.0 * f64::EPSILON, "{tr:?} z = {z}: {sum}");
         }
     }
@@ -144,7 +144,6 @@ proptest! {
                 prop_assert_eq!(u, 1.0);
             }
         }
-        prop_assert_eq!(transition::interval(z), Transition::Exponential.interval(z));
     }
 
     /// Definition 3: U nonincreasing for z <= 0 and nondecreasing for z >= 0.
@@ -162,11 +161,11 @@ proptest! {
     #[test]
     fn transitions_finite_everywhere(z in finite_f64(), d in prop::array::uniform4(-10.0..10.0f64)) {
         let j = Jet::<f64, 5>::from_derivatives([z, d[0], d[1], d[2], d[3]]);
-        prop_assert!(transition::single(z).is_finite());
-        prop_assert!(transition::single_jet(j).is_finite(), "T jet at {z}");
+        prop_assert!(transition::single_ended(z).is_finite());
+        prop_assert!(transition::single_ended_jet(j).is_finite(), "T jet at {z}");
         for tr in ALL_S {
-            prop_assert!(tr.double(z).is_finite() && tr.interval(z).is_finite());
-            prop_assert!(tr.double_jet(j).is_finite(), "{tr:?} S jet at {z}: {:?}", tr.double_jet(j));
+            prop_assert!(tr.double_ended(z).is_finite() && tr.interval(z).is_finite());
+            prop_assert!(tr.double_ended_jet(j).is_finite(), "{tr:?} S jet at {z}: {:?}", tr.double_ended_jet(j));
             prop_assert!(tr.interval_jet(j).is_finite(), "{tr:?} U jet at {z}");
         }
     }
@@ -174,10 +173,10 @@ proptest! {
 
 #[test]
 fn t_single_at_one_is_one() {
-    assert_eq!(transition::single(1.0_f64), 1.0);
-    assert_eq!(transition::single(1.0_f32), 1.0);
+    assert_eq!(transition::single_ended(1.0_f64), 1.0);
+    assert_eq!(transition::single_ended(1.0_f32), 1.0);
     assert_eq!(
-        transition::single_jet(Jet::<f64, 3>::from_derivatives([1.0, 1.0, 0.0])).value(),
+        transition::single_ended_jet(Jet::<f64, 3>::from_derivatives([1.0, 1.0, 0.0])).value(),
         1.0
     );
 }
@@ -187,18 +186,18 @@ fn transitions_finite_at_edge_values() {
     for &z in &edge_values() {
         for &d in &[0.0, 1.0, -7.5] {
             let j = Jet::<f64, 6>::from_derivatives([z, d, -d, d, 0.5 * d, -2.0 * d]);
-            assert!(transition::single(z).is_finite(), "T({z})");
-            assert!(transition::single_jet(j).is_finite(), "T jet at {z}");
+            assert!(transition::single_ended(z).is_finite(), "T({z})");
+            assert!(transition::single_ended_jet(j).is_finite(), "T jet at {z}");
             for tr in ALL_S {
-                let (s, u) = (tr.double(z), tr.interval(z));
+                let (s, u) = (tr.double_ended(z), tr.interval(z));
                 assert!(
                     (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&u),
                     "{tr:?} at {z}"
                 );
                 assert!(
-                    tr.double_jet(j).is_finite(),
+                    tr.double_ended_jet(j).is_finite(),
                     "{tr:?} S jet at {z}: {:?}",
-                    tr.double_jet(j)
+                    tr.double_ended_jet(j)
                 );
                 assert!(tr.interval_jet(j).is_finite(), "{tr:?} U jet at {z}");
             }
@@ -207,7 +206,7 @@ fn transitions_finite_at_edge_values() {
     for tr in ALL_S {
         assert_eq!(tr.interval(0.0_f64), 0.0);
         assert!(
-            (tr.double(0.5_f64) - 0.5).abs() <= f64::EPSILON,
+            (tr.double_ended(0.5_f64) - 0.5).abs() <= f64::EPSILON,
             "{tr:?}: S(1/2) = 1/2"
         );
     }
@@ -215,7 +214,7 @@ fn transitions_finite_at_edge_values() {
 
 /// `d^k/dz^k S(z)` at `z` through a jet with `z' = 1`.
 fn s_derivs(tr: Transition, z: f64) -> [f64; 5] {
-    tr.double_jet(Jet::<f64, 5>::from_derivatives([z, 1.0, 0.0, 0.0, 0.0]))
+    tr.double_ended_jet(Jet::<f64, 5>::from_derivatives([z, 1.0, 0.0, 0.0, 0.0]))
         .derivatives()
 }
 
@@ -250,7 +249,7 @@ proptest! {
     #[test]
     fn t_derivatives_vanish_at_zero(e in -12.0..-2.0f64) {
         let z = 10f64.powf(e);
-        let t = transition::single_jet(Jet::<f64, 5>::from_derivatives([z, 1.0, 0.0, 0.0, 0.0]));
+        let t = transition::single_ended_jet(Jet::<f64, 5>::from_derivatives([z, 1.0, 0.0, 0.0, 0.0]));
         for (k, v) in t.derivatives().iter().enumerate() {
             prop_assert!(v.abs() < 1e-20, "T^({k})({z}) = {v}");
         }
@@ -280,7 +279,7 @@ fn s_derivatives_are_zero_outside_and_match_at_interior() {
 }
 
 // ===========================================================================
-// Envelope (eq. rho)
+// Envelope (eq. (4) (rho))
 // ===========================================================================
 
 proptest! {
@@ -806,7 +805,7 @@ proptest! {
 }
 
 // ===========================================================================
-// Linear manifold = eq. LFAM
+// Linear manifold = eq. (60) (LFAM)
 // ===========================================================================
 
 /// Coefficients of prod_i (lambda + b_i), lowest power first.
@@ -861,7 +860,7 @@ fn check_lfam<const N: usize>(b: &[f64], z: &[f64]) -> Result<(), TestCaseError>
 proptest! {
     #![proptest_config(Config::with_cases(256))]
 
-    /// With linear laws the iterative manifold is the polynomial of eq. LFAM:
+    /// With linear laws the iterative manifold is the polynomial of eq. (60) (LFAM):
     /// s = prod_i (d/dt + b_i) z1, for orders 2..6.
     #[test]
     fn linear_manifold_is_lfam(b in prop::array::uniform5(0.05..5.0f64), z in prop::array::uniform6(-10.0..10.0f64)) {

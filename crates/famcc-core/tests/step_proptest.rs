@@ -10,8 +10,8 @@
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
 use famcc_core::{
-    Config, ConfigError, Constraint, Controller, Discretization, Feedback, Gamma, HighGain, Latch, Skew,
-    SkewKind, StepError, Transition,
+    Config, ConfigBuilder, ConfigError, Constraint, Controller, Discretization, Feedback, Gamma, HighGain,
+    Latch, Skew, SkewKind, StepError, Transition,
 };
 use proptest::prelude::*;
 
@@ -220,16 +220,18 @@ fn build<const N: usize>(s: &Spec) -> Result<Controller<f64, N>, ConfigError> {
         1 => s.eps_x,
         _ => s.eps_x.hypot(s.eps_y),
     };
-    let mut cfg = Config::<f64, N>::new(s.dt, &s.laws, constraint, s.settle_time, s.k_u)?;
-    cfg.k0 = s.k0;
-    cfg.rho_e = s.rho_frac.map(|f| f * eps_norm);
-    cfg.gamma = s.gamma;
-    cfg.latch = s.latch;
-    cfg.transition = s.transition;
-    cfg.differentiator = s.hgd.map(|(w, mu, d)| HighGain::new(mu, binomial::<N>(w), d));
-    cfg.estimate_limits = s.limits.as_ref().map(first_n::<N>);
-    cfg.initial_derivatives = s.init.as_ref().map(first_n::<N>);
-    Controller::new(cfg)
+    let cfg = Config::<f64, N>::builder(s.dt, &s.laws, constraint, s.k_u)
+        .settle_time(s.settle_time)
+        .k0(s.k0)
+        .rho_e(s.rho_frac.map(|f| f * eps_norm))
+        .gamma(s.gamma)
+        .latch(s.latch)
+        .transition(s.transition)
+        .differentiator(s.hgd.map(|(w, mu, d)| HighGain::new(mu, binomial::<N>(w), d)))
+        .estimate_limits(s.limits.as_ref().map(first_n::<N>))
+        .initial_derivatives(s.init.as_ref().map(first_n::<N>))
+        .build()?;
+    Ok(Controller::new(cfg))
 }
 
 #[derive(Clone, Debug)]
@@ -483,22 +485,17 @@ fn fixed(p: f64, q: f64) -> (Feedback<f64>, Option<Skew<f64>>) {
 
 const LO: Constraint<f64> = Constraint::Longitudinal { eps: 0.1 };
 
-fn base2() -> Config<f64, 2> {
-    let mut c = Config::new(1e-3, &[fin(1.0, 0.5)], Constraint::Lateral { eps: 0.1 }, 1.0, 5.0).unwrap();
-    c.differentiator = Some(HighGain::new(0.01, [4.0, 4.0], Discretization::Exact));
-    c
+fn base2() -> ConfigBuilder<f64, 2> {
+    Config::builder(1e-3, &[fin(1.0, 0.5)], Constraint::Lateral { eps: 0.1 }, 5.0)
+        .differentiator(Some(HighGain::new(0.01, [4.0, 4.0], Discretization::Exact)))
 }
 
-fn base3() -> Config<f64, 3> {
-    let mut c = Config::new(1e-3, &[fixed(0.5, 2.0), fixed(0.5, 2.0)], LO, 1.0, 30.0).unwrap();
-    c.differentiator = Some(HighGain::new(0.01, [4.0, 6.0, 4.0], Discretization::Exact));
-    c
-}
-
-fn err_of<const N: usize>(r: Result<Controller<f64, N>, ConfigError>) -> (&'static str, Option<usize>) {
-    let e = r.expect_err("must be rejected");
-    assert!(!e.rule.is_empty());
-    (e.parameter, e.stage)
+fn base3() -> ConfigBuilder<f64, 3> {
+    Config::builder(1e-3, &[fixed(0.5, 2.0), fixed(0.5, 2.0)], LO, 30.0).differentiator(Some(HighGain::new(
+        0.01,
+        [4.0, 6.0, 4.0],
+        Discretization::Exact,
+    )))
 }
 
 fn cfg_err<const N: usize>(r: Result<Config<f64, N>, ConfigError>) -> (&'static str, Option<usize>) {
@@ -507,22 +504,18 @@ fn cfg_err<const N: usize>(r: Result<Config<f64, N>, ConfigError>) -> (&'static 
     (e.parameter, e.stage)
 }
 
-fn with2(f: impl FnOnce(&mut Config<f64, 2>)) -> (&'static str, Option<usize>) {
-    let mut c = base2();
-    f(&mut c);
-    err_of(Controller::new(c))
+fn with2(f: impl FnOnce(ConfigBuilder<f64, 2>) -> ConfigBuilder<f64, 2>) -> (&'static str, Option<usize>) {
+    cfg_err(f(base2()).build())
 }
 
-fn with3(f: impl FnOnce(&mut Config<f64, 3>)) -> (&'static str, Option<usize>) {
-    let mut c = base3();
-    f(&mut c);
-    err_of(Controller::new(c))
+fn with3(f: impl FnOnce(ConfigBuilder<f64, 3>) -> ConfigBuilder<f64, 3>) -> (&'static str, Option<usize>) {
+    cfg_err(f(base3()).build())
 }
 
 #[test]
 fn bases_are_valid() {
-    assert!(Controller::new(base2()).is_ok());
-    assert!(Controller::new(base3()).is_ok());
+    assert!(base2().build().is_ok());
+    assert!(base3().build().is_ok());
 }
 
 #[test]
@@ -530,115 +523,106 @@ fn every_rule_names_its_parameter() {
     const G: Option<usize> = None;
     let bad_pos = [0.0, -0.0, -1e-3, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
     for x in bad_pos {
-        // dt, through Config::new and through the public field.
+        // dt, through Config::builder and through the builder's setter.
         assert_eq!(
-            cfg_err(Config::<f64, 2>::new(x, &[fin(1.0, 0.5)], LO, 1.0, 5.0)),
+            cfg_err(Config::<f64, 2>::builder(x, &[fin(1.0, 0.5)], LO, 5.0).build()),
             ("dt", G)
         );
-        assert_eq!(with2(|c| c.dt = x), ("dt", G), "dt = {x}");
+        assert_eq!(with2(|c| c.dt(x)), ("dt", G), "dt = {x}");
         assert_eq!(
-            cfg_err(Config::<f64, 2>::new(1e-3, &[fin(1.0, 0.5)], LO, x, 5.0)),
+            cfg_err(
+                Config::<f64, 2>::builder(1e-3, &[fin(1.0, 0.5)], LO, 5.0)
+                    .settle_time(x)
+                    .build()
+            ),
             ("settle_time", G)
         );
-        assert_eq!(with3(|c| c.settle_time = x), ("settle_time", G));
+        assert_eq!(with3(|c| c.settle_time(x)), ("settle_time", G));
         assert_eq!(
-            cfg_err(Config::<f64, 2>::new(1e-3, &[fin(1.0, 0.5)], LO, 1.0, x)),
+            cfg_err(Config::<f64, 2>::builder(1e-3, &[fin(1.0, 0.5)], LO, x).build()),
             ("k_u", G)
         );
-        assert_eq!(with2(|c| c.k_u = x), ("k_u", G));
+        assert_eq!(with2(|c| c.k_u(x)), ("k_u", G));
         assert_eq!(
-            cfg_err(Config::<f64, 2>::new(
-                1e-3,
-                &[fin(1.0, 0.5)],
-                Constraint::Longitudinal { eps: x },
-                1.0,
-                5.0
-            )),
+            cfg_err(
+                Config::<f64, 2>::builder(1e-3, &[fin(1.0, 0.5)], Constraint::Longitudinal { eps: x }, 5.0)
+                    .build()
+            ),
             ("eps", G)
         );
         assert_eq!(
-            with2(|c| c.constraint = Constraint::Lateral { eps: x }),
+            with2(|c| c.constraint(Constraint::Lateral { eps: x })),
             ("eps", G)
         );
         assert_eq!(
-            with2(|c| c.constraint = Constraint::Oblique { eps_x: x, eps_y: 0.1 }),
+            with2(|c| c.constraint(Constraint::Oblique { eps_x: x, eps_y: 0.1 })),
             ("eps_x", G)
         );
         assert_eq!(
-            with2(|c| c.constraint = Constraint::Oblique { eps_x: 0.1, eps_y: x }),
+            with2(|c| c.constraint(Constraint::Oblique { eps_x: 0.1, eps_y: x })),
             ("eps_y", G)
         );
-        assert_eq!(with2(|c| c.rho_e = Some(x)), ("rho_e", G), "rho_e = {x}");
+        assert_eq!(with2(|c| c.rho_e(Some(x))), ("rho_e", G), "rho_e = {x}");
         assert_eq!(
-            with3(|c| c.differentiator = Some(HighGain::new(x, [4.0, 6.0, 4.0], Discretization::Exact))),
+            with3(|c| c.differentiator(Some(HighGain::new(x, [4.0, 6.0, 4.0], Discretization::Exact)))),
             ("mu", G)
         );
     }
     for k0 in [1.0, 0.999, 0.0, -2.0, f64::NAN, f64::INFINITY] {
-        assert_eq!(with2(|c| c.k0 = k0), ("k0", G), "k0 = {k0}");
+        assert_eq!(with2(|c| c.k0(k0)), ("k0", G), "k0 = {k0}");
     }
     // rho_e must be below the final width (eps; the norm for oblique).
     for r in [0.1, 0.2, 1e300] {
-        assert_eq!(with2(|c| c.rho_e = Some(r)), ("rho_e", G), "rho_e = {r}");
+        assert_eq!(with2(|c| c.rho_e(Some(r))), ("rho_e", G), "rho_e = {r}");
     }
-    assert!(Controller::new({
-        let mut c = base2();
-        c.rho_e = Some(0.0999);
-        c
-    })
-    .is_ok());
+    assert!(base2().rho_e(Some(0.0999)).build().is_ok());
     assert_eq!(
-        with2(|c| {
-            c.constraint = Constraint::Oblique {
+        with2(|c| c
+            .constraint(Constraint::Oblique {
                 eps_x: 0.3,
-                eps_y: 0.4,
-            };
-            c.rho_e = Some(0.5);
-        }),
+                eps_y: 0.4
+            })
+            .rho_e(Some(0.5))),
         ("rho_e", G)
     );
     // Wrong number of laws.
     assert_eq!(
-        cfg_err(Config::<f64, 3>::new(1e-3, &[fixed(0.5, 2.0)], LO, 1.0, 5.0)),
+        cfg_err(Config::<f64, 3>::builder(1e-3, &[fixed(0.5, 2.0)], LO, 5.0).build()),
         ("feedback", G)
     );
     assert_eq!(
-        cfg_err(Config::<f64, 3>::new(1e-3, &[fixed(0.5, 2.0); 3], LO, 1.0, 5.0)),
+        cfg_err(Config::<f64, 3>::builder(1e-3, &[fixed(0.5, 2.0); 3], LO, 5.0).build()),
         ("feedback", G)
     );
     assert_eq!(
-        cfg_err(Config::<f64, 2>::new(1e-3, &[], LO, 1.0, 5.0)),
+        cfg_err(Config::<f64, 2>::builder(1e-3, &[], LO, 5.0).build()),
         ("feedback", G)
     );
     assert_eq!(
-        cfg_err(Config::<f64, 1>::new(1e-3, &[fin(1.0, 0.5)], LO, 1.0, 5.0)),
+        cfg_err(Config::<f64, 1>::builder(1e-3, &[fin(1.0, 0.5)], LO, 5.0).build()),
         ("feedback", G)
     );
     // Lateral / oblique need s_(n-1): rejected at order 1.
     assert_eq!(
-        cfg_err(Config::<f64, 1>::new(
-            1e-3,
-            &[],
-            Constraint::Lateral { eps: 0.1 },
-            1.0,
-            5.0
-        )),
+        cfg_err(Config::<f64, 1>::builder(1e-3, &[], Constraint::Lateral { eps: 0.1 }, 5.0).build()),
         ("constraint", G)
     );
     assert_eq!(
-        cfg_err(Config::<f64, 1>::new(
-            1e-3,
-            &[],
-            Constraint::Oblique {
-                eps_x: 0.1,
-                eps_y: 0.1
-            },
-            1.0,
-            5.0
-        )),
+        cfg_err(
+            Config::<f64, 1>::builder(
+                1e-3,
+                &[],
+                Constraint::Oblique {
+                    eps_x: 0.1,
+                    eps_y: 0.1
+                },
+                5.0
+            )
+            .build()
+        ),
         ("constraint", G)
     );
-    assert!(Config::<f64, 1>::new(1e-3, &[], LO, 1.0, 5.0).is_ok());
+    assert!(Config::<f64, 1>::builder(1e-3, &[], LO, 5.0).build().is_ok());
     // Non-Hurwitz differentiators.
     for a in [
         [1.0, 1.0, 10.0],
@@ -648,38 +632,38 @@ fn every_rule_names_its_parameter() {
         [4.0, f64::NAN, 4.0],
     ] {
         assert_eq!(
-            with3(|c| c.differentiator = Some(HighGain::new(0.01, a, Discretization::Exact))),
+            with3(|c| c.differentiator(Some(HighGain::new(0.01, a, Discretization::Exact)))),
             ("a", G),
             "a = {a:?}"
         );
     }
-    assert!(Controller::new({
-        let mut c = base3();
-        c.differentiator = Some(HighGain::new(0.01, [1.0, 1.0, 0.99], Discretization::Tustin));
-        c
-    })
-    .is_ok());
+    assert!(base3()
+        .differentiator(Some(HighGain::new(
+            0.01,
+            [1.0, 1.0, 0.99],
+            Discretization::Tustin
+        )))
+        .build()
+        .is_ok());
     assert_eq!(
-        with2(|c| c.differentiator = Some(HighGain::new(0.01, [1.0, -1.0], Discretization::Euler))),
+        with2(|c| c.differentiator(Some(HighGain::new(0.01, [1.0, -1.0], Discretization::Euler)))),
         ("a", G)
     );
     // Optional vectors.
     assert_eq!(
-        with2(|c| c.estimate_limits = Some([1.0, 0.0])),
+        with2(|c| c.estimate_limits(Some([1.0, 0.0]))),
         ("estimate_limits", G)
     );
     assert_eq!(
-        with2(|c| c.estimate_limits = Some([f64::NAN, 1.0])),
+        with2(|c| c.estimate_limits(Some([f64::NAN, 1.0]))),
         ("estimate_limits", G)
     );
-    assert!(Controller::new({
-        let mut c = base2();
-        c.estimate_limits = Some([f64::INFINITY, 1.0]);
-        c
-    })
-    .is_ok());
+    assert!(base2()
+        .estimate_limits(Some([f64::INFINITY, 1.0]))
+        .build()
+        .is_ok());
     assert_eq!(
-        with2(|c| c.initial_derivatives = Some([0.0, f64::INFINITY])),
+        with2(|c| c.initial_derivatives(Some([0.0, f64::INFINITY]))),
         ("initial_derivatives", G)
     );
 }
@@ -688,23 +672,18 @@ fn every_rule_names_its_parameter() {
 fn per_stage_rules_name_the_stage() {
     // p out of (0, 1) at stage 1 (the second law) of an order-3 controller.
     for p in [0.0, 1.0, 1.5, -0.5, f64::NAN] {
-        let r = Config::<f64, 3>::new(1e-3, &[fixed(0.5, 2.0), fixed(p, 2.0)], LO, 1.0, 5.0);
+        let r = Config::<f64, 3>::builder(1e-3, &[fixed(0.5, 2.0), fixed(p, 2.0)], LO, 5.0).build();
         assert_eq!(cfg_err(r), ("p", Some(1)), "p = {p}");
-        let r = Config::<f64, 3>::new(1e-3, &[fin(1.0, p), fixed(0.5, 2.0)], LO, 1.0, 5.0);
+        let r = Config::<f64, 3>::builder(1e-3, &[fin(1.0, p), fixed(0.5, 2.0)], LO, 5.0).build();
         assert_eq!(cfg_err(r), ("p", Some(0)), "p = {p}");
-        let r = Config::<f64, 2>::new(1e-3, &[fin(1.0, p)], LO, 1.0, 5.0);
+        let r = Config::<f64, 2>::builder(1e-3, &[fin(1.0, p)], LO, 5.0).build();
         assert_eq!(cfg_err(r), ("p", Some(0)), "p = {p}");
     }
     for q in [1.0, 0.5, -2.0, f64::NAN, f64::INFINITY] {
-        let r = Config::<f64, 3>::new(1e-3, &[fixed(0.5, 2.0), fixed(0.5, q)], LO, 1.0, 5.0);
+        let r = Config::<f64, 3>::builder(1e-3, &[fixed(0.5, 2.0), fixed(0.5, q)], LO, 5.0).build();
         assert_eq!(cfg_err(r), ("q", Some(1)), "q = {q}");
-        let r = Config::<f64, 4>::new(
-            1e-3,
-            &[fixed(0.5, 2.0), fixed(0.5, 2.0), fixed(0.5, q)],
-            LO,
-            1.0,
-            5.0,
-        );
+        let r = Config::<f64, 4>::builder(1e-3, &[fixed(0.5, 2.0), fixed(0.5, 2.0), fixed(0.5, q)], LO, 5.0)
+            .build();
         assert_eq!(cfg_err(r), ("q", Some(2)), "q = {q}");
     }
     // SSMD (or no skew) with p < 1 where derivatives are needed.
@@ -712,17 +691,21 @@ fn per_stage_rules_name_the_stage() {
         Feedback::FiniteTime { k: 1.0, p: 0.5 },
         Some(Skew::smooth(0.2, 0.1)),
     );
-    let r = Config::<f64, 3>::new(1e-3, &[ssmd, fixed(0.5, 2.0)], LO, 1.0, 5.0);
+    let r = Config::<f64, 3>::builder(1e-3, &[ssmd, fixed(0.5, 2.0)], LO, 5.0).build();
     assert_eq!(cfg_err(r), ("skew", Some(0)));
-    let r = Config::<f64, 3>::new(1e-3, &[fin(1.0, 0.5), fixed(0.5, 2.0)], LO, 1.0, 5.0);
+    let r = Config::<f64, 3>::builder(1e-3, &[fin(1.0, 0.5), fixed(0.5, 2.0)], LO, 5.0).build();
     assert_eq!(cfg_err(r), ("skew", Some(0)));
-    let r = Config::<f64, 4>::new(1e-3, &[fixed(0.5, 2.0), ssmd, fixed(0.5, 2.0)], LO, 1.0, 5.0);
+    let r = Config::<f64, 4>::builder(1e-3, &[fixed(0.5, 2.0), ssmd, fixed(0.5, 2.0)], LO, 5.0).build();
     assert_eq!(cfg_err(r), ("skew", Some(1)));
     // ... but SSMD is fine at the last stage (only its value is needed) and a
     // linear law needs no skew anywhere.
-    assert!(Config::<f64, 3>::new(1e-3, &[fixed(0.5, 2.0), ssmd], LO, 1.0, 5.0).is_ok());
+    assert!(Config::<f64, 3>::builder(1e-3, &[fixed(0.5, 2.0), ssmd], LO, 5.0)
+        .build()
+        .is_ok());
     let lin = (Feedback::Linear { k: 2.0 }, None);
-    assert!(Config::<f64, 4>::new(1e-3, &[lin, lin, ssmd], LO, 1.0, 5.0).is_ok());
+    assert!(Config::<f64, 4>::builder(1e-3, &[lin, lin, ssmd], LO, 5.0)
+        .build()
+        .is_ok());
 }
 
 fn bad_positive() -> impl Strategy<Value = f64> {
@@ -748,22 +731,22 @@ proptest! {
         q in prop_oneof![-5.0..=1.0f64, Just(f64::NAN), Just(f64::INFINITY)],
         stage in 0usize..3,
     ) {
-        prop_assert_eq!(with3(|c| c.dt = x), ("dt", None));
-        prop_assert_eq!(with3(|c| c.settle_time = x), ("settle_time", None));
-        prop_assert_eq!(with3(|c| c.k_u = x), ("k_u", None));
-        prop_assert_eq!(with3(|c| c.k0 = k0), ("k0", None));
-        prop_assert_eq!(with3(|c| c.constraint = Constraint::Longitudinal { eps: x }), ("eps", None));
-        prop_assert_eq!(with3(|c| c.rho_e = Some(x)), ("rho_e", None));
-        prop_assert_eq!(with3(|c| c.rho_e = Some(0.1 * rho_over)), ("rho_e", None));
+        prop_assert_eq!(with3(|c| c.dt(x)), ("dt", None));
+        prop_assert_eq!(with3(|c| c.settle_time(x)), ("settle_time", None));
+        prop_assert_eq!(with3(|c| c.k_u(x)), ("k_u", None));
+        prop_assert_eq!(with3(|c| c.k0(k0)), ("k0", None));
+        prop_assert_eq!(with3(|c| c.constraint(Constraint::Longitudinal { eps: x })), ("eps", None));
+        prop_assert_eq!(with3(|c| c.rho_e(Some(x))), ("rho_e", None));
+        prop_assert_eq!(with3(|c| c.rho_e(Some(0.1 * rho_over))), ("rho_e", None));
         prop_assert_eq!(
-            with3(|c| c.differentiator = Some(HighGain::new(x, [4.0, 6.0, 4.0], Discretization::Exact))),
+            with3(|c| c.differentiator(Some(HighGain::new(x, [4.0, 6.0, 4.0], Discretization::Exact)))),
             ("mu", None)
         );
         let mut laws = [fixed(0.5, 2.0); 3];
         laws[stage] = fixed(p, 2.0);
-        prop_assert_eq!(cfg_err(Config::<f64, 4>::new(1e-3, &laws, LO, 1.0, 5.0)), ("p", Some(stage)));
+        prop_assert_eq!(cfg_err(Config::<f64, 4>::builder(1e-3, &laws, LO, 5.0).build()), ("p", Some(stage)));
         laws[stage] = fixed(0.5, q);
-        prop_assert_eq!(cfg_err(Config::<f64, 4>::new(1e-3, &laws, LO, 1.0, 5.0)), ("q", Some(stage)));
+        prop_assert_eq!(cfg_err(Config::<f64, 4>::builder(1e-3, &laws, LO, 5.0).build()), ("q", Some(stage)));
     }
 
     /// Every binomial (s + w)^N is accepted; flipping one coefficient's sign is not.
@@ -790,9 +773,11 @@ proptest! {
 /// unchanged, or the latched width stays finite and the snapshot restores.
 #[test]
 fn huge_first_sample_latches_a_finite_width() {
-    let mut cfg = Config::<f64, 1>::new(1e-3, &[], LO, 1.0, 5.0).unwrap();
-    cfg.rho_e = None;
-    let mut c = Controller::new(cfg).unwrap();
+    let cfg = Config::<f64, 1>::builder(1e-3, &[], LO, 5.0)
+        .rho_e(None)
+        .build()
+        .unwrap();
+    let mut c = Controller::new(cfg);
     let fresh = c;
     match c.step(1e308) {
         Err(_) => assert_eq!(c, fresh),
@@ -814,7 +799,7 @@ fn failures_after_outlier<T: famcc_core::Real, const N: usize>(
     let mut failed = 0;
     for k in 0..2100 {
         let e = if k == 100 { outlier } else { 0.1 };
-        let r = c.step(T::c(e));
+        let r = c.step(T::from_f64(e));
         if k > 100 && r.is_err() {
             failed += 1;
         }
@@ -830,42 +815,11 @@ fn failures_after_outlier<T: famcc_core::Real, const N: usize>(
 /// recovers (or rejects the outlier itself).
 #[test]
 fn one_outlier_does_not_brick_the_controller() {
-    let mk3 = || {
-        let mut c = base3();
-        c.estimate_limits = None;
-        c
-    };
-    let mut f64_ctrl = Controller::new(mk3()).unwrap();
+    let mut f64_ctrl = Controller::new(base3().estimate_limits(None).build().unwrap());
     let n64 = failures_after_outlier(&mut f64_ctrl, 1e80);
-    let mut f32_cfg = Config::<f32, 3>::new(
-        1e-3,
-        &[
-            (
-                Feedback::FixedTime {
-                    alpha: 1.0,
-                    p: 0.5,
-                    beta: 0.5,
-                    q: 2.0,
-                },
-                Some(Skew::nonsingular(0.1, 0.1, 0.1)),
-            ),
-            (
-                Feedback::FixedTime {
-                    alpha: 2.0,
-                    p: 0.5,
-                    beta: 1.0,
-                    q: 2.0,
-                },
-                Some(Skew::nonsingular(3.0, 0.2, 1.0)),
-            ),
-        ],
-        Constraint::Longitudinal { eps: 3.0 },
-        1.0,
-        30.0,
-    )
-    .unwrap();
-    f32_cfg.differentiator = Some(HighGain::new(0.01, [4.0, 6.0, 4.0], Discretization::Exact));
-    let mut f32_ctrl = Controller::new(f32_cfg).unwrap();
+    // Example 3 (authors' variant) in f32.
+    let f32_cfg = famcc_paper::designs::example3::<f32>(famcc_paper::Variant::Code, 1e-3).unwrap();
+    let mut f32_ctrl = Controller::new(f32_cfg);
     let n32 = failures_after_outlier(&mut f32_ctrl, 1e12);
     assert!(
         n64 < 500 && n32 < 500,
@@ -877,7 +831,7 @@ fn one_outlier_does_not_brick_the_controller() {
 /// the snapshot then fails `restore` ("must hold finite values").
 #[test]
 fn absurd_dt_keeps_the_clock_finite() {
-    let mut c = Controller::new(Config::<f64, 1>::new(1e-3, &[], LO, 1.0, 5.0).unwrap()).unwrap();
+    let mut c = Controller::new(Config::<f64, 1>::builder(1e-3, &[], LO, 5.0).build().unwrap());
     let fresh = c;
     for _ in 0..2 {
         let before = c;

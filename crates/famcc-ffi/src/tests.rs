@@ -6,134 +6,114 @@ extern crate std;
 
 use super::*;
 use core::mem::MaybeUninit;
-use famcc_core::{Config, Constraint, Controller, Discretization, Feedback, HighGain, Latch, Real, Skew};
+use famcc_core::{Config, Constraint, Controller, Feedback, Real, SkewKind};
+use famcc_paper::designs::{self, Variant};
 use std::vec::Vec;
 
-fn c_example1<T: Real>() -> FamccConfig<T> {
-    let mut c = MaybeUninit::<FamccConfig<T>>::uninit();
-    assert_eq!(unsafe { defaults(c.as_mut_ptr()) }, FamccStatus::Ok);
-    let mut c = unsafe { c.assume_init() };
-    c.dt = T::c(1e-3);
-    c.k_u = T::c(5.0);
+/// The C configuration of a famcc-core configuration (the reverse of
+/// `convert::to_config`), so that the designs come from famcc-paper alone.
+fn c_config<T: Real, const N: usize>(cfg: &Config<T, N>) -> FamccConfig<T> {
+    let mut c = convert::defaults::<T>();
+    c.dt = cfg.dt();
+    c.settle_time = cfg.settle_time();
+    c.k0 = cfg.k0();
+    c.k_u = cfg.k_u();
+    let (eps_x, eps_y) = cfg.constraint().eps();
+    let kind = match cfg.constraint() {
+        Constraint::Longitudinal { .. } => FamccConstraintKind::Longitudinal,
+        Constraint::Lateral { .. } => FamccConstraintKind::Lateral,
+        Constraint::Oblique { .. } => FamccConstraintKind::Oblique,
+    };
     c.constraint = FamccConstraint {
-        kind: FamccConstraintKind::Lateral as u32,
-        eps_x: T::c(0.1),
-        eps_y: T::zero(),
+        kind: kind as u32,
+        eps_x,
+        eps_y,
     };
-    c.latch = FamccLatch::Authors as u32;
-    c.stages[0].feedback = FamccFeedback {
-        kind: FamccFeedbackKind::FiniteTime as u32,
-        params: FamccFeedbackParams {
-            finite_time: FamccFiniteTime {
-                k: T::one(),
-                p: T::c(0.5),
+    c.gamma = convert::to_c(&convert::GAMMAS, cfg.gamma());
+    c.transition = convert::to_c(&convert::TRANSITIONS, cfg.transition());
+    c.latch = convert::to_c(&convert::LATCHES, cfg.latch());
+    (c.flexible, c.rho_e) = match cfg.rho_e() {
+        Some(r) => (FamccFlexible::On as u32, r),
+        None => (FamccFlexible::Off as u32, T::zero()),
+    };
+    for (stage, law) in c.stages.iter_mut().zip(cfg.laws()) {
+        stage.feedback = c_feedback(law.feedback());
+        stage.skew = law.skew().map_or(FamccSkew::default(), |s| FamccSkew {
+            kind: match s.kind {
+                SkewKind::Smooth => FamccSkewKind::Smooth as u32,
+                SkewKind::Nonsingular { .. } => FamccSkewKind::Nonsingular as u32,
             },
-        },
-    };
-    c.differentiator = FamccDifferentiator {
-        enabled: 1,
-        mu: T::c(0.01),
-        a: [T::c(4.0), T::c(4.0), T::zero()],
-        discretization: FamccDiscretization::Exact as u32,
-    };
+            eps_s: s.eps_s,
+            eps_z: s.eps_z,
+            k_pp: match s.kind {
+                SkewKind::Nonsingular { k_pp } => k_pp,
+                SkewKind::Smooth => T::zero(),
+            },
+            transition: convert::to_c(&convert::TRANSITIONS, s.transition),
+        });
+    }
+    if let Some(h) = cfg.differentiator() {
+        c.differentiator.enabled = 1;
+        c.differentiator.mu = h.mu;
+        c.differentiator.a.iter_mut().zip(h.a).for_each(|(d, s)| *d = s);
+        c.differentiator.discretization = convert::to_c(&convert::DISCRETIZATIONS, h.discretization);
+    }
     c
+}
+
+fn c_feedback<T: Real>(f: &Feedback<T>) -> FamccFeedback<T> {
+    let (kind, params) = match *f {
+        Feedback::Linear { k } => (
+            FamccFeedbackKind::Linear,
+            FamccFeedbackParams {
+                linear: FamccLinear { k },
+            },
+        ),
+        Feedback::FiniteTime { k, p } => (
+            FamccFeedbackKind::FiniteTime,
+            FamccFeedbackParams {
+                finite_time: FamccFiniteTime { k, p },
+            },
+        ),
+        Feedback::FixedTime { alpha, p, beta, q } => (
+            FamccFeedbackKind::FixedTime,
+            FamccFeedbackParams {
+                fixed_time: FamccFixedTime { alpha, p, beta, q },
+            },
+        ),
+        Feedback::VariableExponent { k, r_b, r_1, r_t } => (
+            FamccFeedbackKind::VariableExponent,
+            FamccFeedbackParams {
+                variable_exponent: FamccVariableExponent { k, r_b, r_1, r_t },
+            },
+        ),
+        Feedback::MoulayDiscontinuous { beta, lambda, mu } => (
+            FamccFeedbackKind::MoulayDiscontinuous,
+            FamccFeedbackParams {
+                moulay: FamccMoulay { beta, lambda, mu },
+            },
+        ),
+    };
+    FamccFeedback {
+        kind: kind as u32,
+        params,
+    }
 }
 
 fn rust_example1<T: Real>() -> Controller<T, 2> {
-    let mut cfg = Config::<T, 2>::new(
-        T::c(1e-3),
-        &[(
-            Feedback::FiniteTime {
-                k: T::one(),
-                p: T::c(0.5),
-            },
-            None,
-        )],
-        Constraint::Lateral { eps: T::c(0.1) },
-        T::one(),
-        T::c(5.0),
-    )
-    .unwrap();
-    cfg.differentiator = Some(HighGain::new(
-        T::c(0.01),
-        [T::c(4.0), T::c(4.0)],
-        Discretization::Exact,
-    ));
-    cfg.latch = Latch::Authors;
-    Controller::new(cfg).unwrap()
-}
-
-fn c_example3<T: Real>() -> FamccConfig<T> {
-    let mut c = c_example1::<T>();
-    c.k_u = T::c(30.0);
-    c.constraint = FamccConstraint {
-        kind: FamccConstraintKind::Longitudinal as u32,
-        eps_x: T::zero(),
-        eps_y: T::c(3.0),
-    };
-    let fixed = |alpha: f64, beta: f64| FamccFeedback {
-        kind: FamccFeedbackKind::FixedTime as u32,
-        params: FamccFeedbackParams {
-            fixed_time: FamccFixedTime {
-                alpha: T::c(alpha),
-                p: T::c(0.5),
-                beta: T::c(beta),
-                q: T::c(2.0),
-            },
-        },
-    };
-    let nsmd = |eps_s: f64, eps_z: f64, k_pp: f64| FamccSkew {
-        kind: FamccSkewKind::Nonsingular as u32,
-        eps_s: T::c(eps_s),
-        eps_z: T::c(eps_z),
-        k_pp: T::c(k_pp),
-        transition: FamccTransition::Exponential as u32,
-    };
-    c.stages = [
-        FamccStage {
-            feedback: fixed(1.0, 0.5),
-            skew: nsmd(0.1, 0.1, 0.1),
-        },
-        FamccStage {
-            feedback: fixed(2.0, 1.0),
-            skew: nsmd(3.0, 0.2, 1.0),
-        },
-    ];
-    c.differentiator.a = [T::c(4.0), T::c(6.0), T::c(4.0)];
-    c
+    Controller::new(designs::example1(Variant::Code, T::from_f64(1e-3)).unwrap())
 }
 
 fn rust_example3<T: Real>() -> Controller<T, 3> {
-    let fixed = |alpha: f64, beta: f64| Feedback::FixedTime {
-        alpha: T::c(alpha),
-        p: T::c(0.5),
-        beta: T::c(beta),
-        q: T::c(2.0),
-    };
-    let mut cfg = Config::<T, 3>::new(
-        T::c(1e-3),
-        &[
-            (
-                fixed(1.0, 0.5),
-                Some(Skew::nonsingular(T::c(0.1), T::c(0.1), T::c(0.1))),
-            ),
-            (
-                fixed(2.0, 1.0),
-                Some(Skew::nonsingular(T::c(3.0), T::c(0.2), T::c(1.0))),
-            ),
-        ],
-        Constraint::Longitudinal { eps: T::c(3.0) },
-        T::one(),
-        T::c(30.0),
-    )
-    .unwrap();
-    cfg.differentiator = Some(HighGain::new(
-        T::c(0.01),
-        [T::c(4.0), T::c(6.0), T::c(4.0)],
-        Discretization::Exact,
-    ));
-    cfg.latch = Latch::Authors;
-    Controller::new(cfg).unwrap()
+    Controller::new(designs::example3(Variant::Code, T::from_f64(1e-3)).unwrap())
+}
+
+fn c_example1<T: Real>() -> FamccConfig<T> {
+    c_config(rust_example1::<T>().config())
+}
+
+fn c_example3<T: Real>() -> FamccConfig<T> {
+    c_config(rust_example3::<T>().config())
 }
 
 /// A decaying oscillation with a pulse (drives the flexible boundary).
@@ -142,7 +122,7 @@ fn signal<T: Real>(n: usize) -> Vec<T> {
         .map(|k| {
             let t = k as f64 * 1e-3;
             let pulse = if (1200..1350).contains(&k) { 0.8 } else { 0.0 };
-            T::c(-(-1.5 * t).exp() * (8.17 * t).cos() + pulse)
+            T::from_f64(-(-1.5 * t).exp() * (8.17 * t).cos() + pulse)
         })
         .collect()
 }
@@ -356,4 +336,42 @@ fn sizes_and_strings() {
     assert!(s.to_str().unwrap().contains("finite"));
     let s = unsafe { core::ffi::CStr::from_ptr(famcc_status_str(1234)) };
     assert_eq!(s.to_str().unwrap(), "unknown status");
+}
+
+/// `famcc_config_*_defaults` are famcc-core's defaults: with the required
+/// values set, the C configuration builds the same controller as the core's
+/// builder left at its defaults.
+#[test]
+fn c_defaults_are_the_core_defaults() {
+    let mut c = MaybeUninit::<FamccConfigF64>::uninit();
+    assert_eq!(
+        unsafe { famcc_config_f64_defaults(c.as_mut_ptr()) },
+        FamccStatus::Ok
+    );
+    let mut c = unsafe { c.assume_init() };
+    c.dt = 1e-3;
+    c.k_u = 5.0;
+    c.constraint.eps_y = 0.05;
+    c.stages[0].feedback.params.linear.k = 2.0;
+    let from_c = convert::to_config::<f64, 2>(&c).unwrap();
+    let core = Config::<f64, 2>::builder(
+        1e-3,
+        &[(Feedback::Linear { k: 2.0 }, None)],
+        Constraint::Longitudinal { eps: 0.05 },
+        5.0,
+    )
+    .build()
+    .unwrap();
+    assert_eq!(from_c, core);
+    assert_eq!(from_c.rho_e(), Some(0.05 * 0.1));
+    // What has no default must be set.
+    let mut unset = c;
+    unset.stages[0].feedback.params.linear.k = 0.0;
+    assert_eq!(convert::to_config::<f64, 2>(&unset).unwrap_err().parameter, "k");
+    unset = c;
+    unset.flexible = 7;
+    assert_eq!(
+        convert::to_config::<f64, 2>(&unset).unwrap_err().parameter,
+        "flexible"
+    );
 }

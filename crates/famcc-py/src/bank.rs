@@ -1,8 +1,11 @@
 //! `famcc.ControllerBank`: n independent controllers with one configuration,
 //! stepped together from a NumPy array (Monte-Carlo work).
 
-use crate::controller::{with_bank, BankCores, PyController, Spec};
+use crate::controller::PyController;
+use crate::dispatch::{with_bank, BankCores};
 use crate::errors::{ConfigError, StepError};
+use crate::spec::Spec;
+use crate::state;
 use famcc_core::{Controller, Real};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
@@ -29,7 +32,7 @@ pub struct ControllerBank {
 fn step_slice<T: Real, const N: usize>(v: &mut [Controller<T, N>], e: &[f64], out: &mut [f64]) -> usize {
     let mut failed = 0;
     for ((c, e), o) in v.iter_mut().zip(e).zip(out.iter_mut()) {
-        match c.step(T::c(*e)) {
+        match c.step(T::from_f64(*e)) {
             Ok(x) => *o = x.to_f64_lossless(),
             Err(_) => {
                 *o = c.diagnostics().v.to_f64_lossless();
@@ -149,11 +152,8 @@ impl ControllerBank {
                 self.n
             )));
         }
-        let mut c = PyController {
-            core: crate::controller::Core::build(&self.spec)?,
-            spec: self.spec.clone(),
-        };
-        let state: Vec<f64> = with_bank!(&self.cores, v => crate::controller::snapshot_vec(&v[i]));
+        let mut c = PyController::from_spec(self.spec.clone())?;
+        let state: Vec<f64> = with_bank!(&self.cores, v => state::to_vec(&v[i]));
         c.set_state_vec(&state)?;
         Ok(c)
     }

@@ -1,35 +1,41 @@
 //! Building blocks as Python functions: transitions, the envelope, skewed
 //! laws, the iterative manifold, the corollaries' settling-time bounds.
 
+use crate::args::per_stage;
+use crate::array::map_float_or_array;
+use crate::differentiator::to_array;
 use crate::errors::{config_err, ConfigError};
-use crate::laws::{map_float_or_array, parse_transition, Law, SkewSpec};
-use famcc_core::{bounds, envelope, manifold, transition, Feedback, SkewedLaw};
+use crate::laws::{Law, SkewSpec};
+use crate::names::TRANSITION;
+use crate::orders::with_order;
+use famcc_core::config::check_order;
+use famcc_core::{bounds, manifold as core_manifold, transition, Envelope, Feedback, SkewedLaw};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-/// Single-ended transition T(z) (eq. trnsT) on a float or an array.
+/// Single-ended transition T(z) (eq. (1), trnsT) on a float or an array.
 #[pyfunction]
 pub fn transition_t<'py>(py: Python<'py>, z: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-    map_float_or_array(py, z, transition::single)
+    map_float_or_array(py, z, transition::single_ended)
 }
 
-/// Double-ended transition S(z) (eq. trnsS or an alternative `kind`).
+/// Double-ended transition S(z) (eq. (2) (trnsS) or an alternative `kind`).
 #[pyfunction]
-#[pyo3(signature = (z, kind = "exponential"))]
+#[pyo3(signature = (z, kind = TRANSITION.default_name()))]
 pub fn transition_s<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, kind: &str) -> PyResult<Bound<'py, PyAny>> {
-    let k = parse_transition(kind, "kind")?;
-    map_float_or_array(py, z, |v| k.double(v))
+    let k = TRANSITION.parse(kind, "kind")?;
+    map_float_or_array(py, z, |v| k.double_ended(v))
 }
 
-/// Interval transition U(z) = S(|z|) (eq. trnsU).
+/// Interval transition U(z) = S(|z|) (eq. (3) (trnsU)).
 #[pyfunction]
-#[pyo3(signature = (z, kind = "exponential"))]
+#[pyo3(signature = (z, kind = TRANSITION.default_name()))]
 pub fn transition_u<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, kind: &str) -> PyResult<Bound<'py, PyAny>> {
-    let k = parse_transition(kind, "kind")?;
+    let k = TRANSITION.parse(kind, "kind")?;
     map_float_or_array(py, z, |v| k.interval(v))
 }
 
-/// The prescribed performance function rho(rho0, eps, settle_time) at t (eq. rho).
+/// The prescribed performance function rho(rho0, eps, settle_time) at t (eq. (4) (rho)).
 #[pyfunction]
 pub fn rho<'py>(
     py: Python<'py>,
@@ -38,16 +44,11 @@ pub fn rho<'py>(
     settle_time: f64,
     t: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if !(eps > 0.0 && rho0 >= eps && rho0.is_finite()) {
-        return Err(ConfigError::new_err("rho0 and eps must satisfy rho0 >= eps > 0"));
-    }
-    if !(settle_time > 0.0 && settle_time.is_finite()) {
-        return Err(ConfigError::new_err("settle_time must be finite and > 0"));
-    }
-    map_float_or_array(py, t, |t| envelope::rho(rho0, eps, settle_time, t))
+    let envelope = Envelope::new(rho0, eps, settle_time).map_err(config_err)?;
+    map_float_or_array(py, t, |t| envelope.at(t))
 }
 
-/// A skewed law h_m (eqs. SSMD, NSMD), callable on floats and arrays.
+/// A skewed law h_m (eqs. (14) SSMD, (15) NSMD), callable on floats and arrays.
 #[pyclass(frozen, module = "famcc._core")]
 pub struct Skewed {
     law: SkewedLaw<f64>,
@@ -101,47 +102,21 @@ pub fn skewed(law: &Bound<'_, PyAny>, skew: Option<&Bound<'_, PyAny>>) -> PyResu
     })
 }
 
-macro_rules! manifold_orders {
-    ($z:expr, $laws:expr, $($n:literal)*) => {
-        match $z.len() {
-            $($n => {
-                let mut a = [0.0; $n];
-                a.copy_from_slice($z);
-                manifold::evaluate::<f64, $n>(&a, $laws).stages.to_vec()
-            })*
-            n => return Err(ConfigError::new_err(format!("z must have 1 to 8 entries, got {n}"))),
-        }
-    };
-}
-
-/// `manifold(z, feedback, skew=None)`: s_1..s_n of eq. (IS) for the error
-/// vector z = (z1..zn); `feedback`/`skew` one value or one per stage.
+/// `manifold(z, feedback, skew=None)`: s_1..s_n of eq. (11) (IS) for the
+/// error vector z = (z1..zn); `feedback`/`skew` one value or one per stage.
 #[pyfunction]
 #[pyo3(signature = (z, feedback, skew = None))]
-pub fn manifold_values<'py>(
+pub fn manifold<'py>(
     py: Python<'py>,
     z: Vec<f64>,
     feedback: &Bound<'py, PyAny>,
     skew: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let n = z.len().saturating_sub(1);
-    let per_stage = |obj: &Bound<'py, PyAny>, name: &str| -> PyResult<Vec<Bound<'py, PyAny>>> {
-        if obj.is_instance_of::<pyo3::types::PyList>() || obj.is_instance_of::<pyo3::types::PyTuple>() {
-            let v: Vec<Bound<'py, PyAny>> = obj.try_iter()?.collect::<PyResult<_>>()?;
-            if v.len() != n {
-                return Err(ConfigError::new_err(format!(
-                    "{name} must have len(z) - 1 = {n} entries, got {}",
-                    v.len()
-                )));
-            }
-            Ok(v)
-        } else {
-            Ok(vec![obj.clone(); n])
-        }
-    };
-    let laws = per_stage(feedback, "feedback")?;
-    let skews = match skew {
-        Some(s) => per_stage(s, "skew")?.into_iter().map(Some).collect(),
+    let what = |name: &str| format!("{name} must have len(z) - 1");
+    let laws = per_stage(feedback, n, &what("feedback"), |o| Ok(o.clone()))?;
+    let skews: Vec<Option<Bound<'py, PyAny>>> = match skew {
+        Some(s) => per_stage(s, n, &what("skew"), |o| Ok(Some(o.clone())))?,
         None => vec![None; n],
     };
     let prepared: Vec<SkewedLaw<f64>> = laws
@@ -149,11 +124,15 @@ pub fn manifold_values<'py>(
         .zip(skews.iter())
         .map(|(l, s)| prepare(l, s.as_ref(), "feedback"))
         .collect::<PyResult<_>>()?;
+    check_order(z.len())
+        .map_err(|e| ConfigError::new_err(format!("z: one entry per order, {e} (got {})", z.len())))?;
     if z.iter().any(|v| !v.is_finite()) {
         return Err(ConfigError::new_err("z must be finite"));
     }
-    let out = manifold_orders!(&z[..], &prepared, 1 2 3 4 5 6 7 8);
-    Ok(PyArray1::from_vec(py, out))
+    let stages = with_order!(z.len(), N => to_array::<f64, N>(&z)
+        .map(|a| core_manifold::evaluate::<f64, N>(&a, &prepared).stages.to_vec()), _ => None);
+    let stages = stages.ok_or_else(|| ConfigError::new_err("z must have one entry per order"))?;
+    Ok(PyArray1::from_vec(py, stages))
 }
 
 /// T_fn' = |z1(0)|^(1-p) / (k (1-p)) (Corollary 1), seconds.

@@ -1,31 +1,13 @@
-//! Frozen configuration objects: feedback laws, skews, the differentiator.
-//! Each converts to its famcc-core value; validation is famcc-core's.
+//! Frozen configuration objects: the feedback laws and the skews. Each
+//! converts to its famcc-core value (and back, for the paper's designs);
+//! validation is famcc-core's.
 
-use crate::errors::config_err;
-use famcc_core::{Discretization, Feedback, Real, Skew, SkewKind, SkewedLaw, Transition};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use crate::array::map_float_or_array;
+use crate::errors::{config_err, ConfigError};
+use crate::names::TRANSITION;
+use famcc_core::{Feedback, Real, Skew, SkewKind, Transition};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
-
-/// Evaluates `f` on a float (returns a float) or on an array-like (returns
-/// a float64 array of the same length).
-pub fn map_float_or_array<'py>(
-    py: Python<'py>,
-    x: &Bound<'py, PyAny>,
-    f: impl Fn(f64) -> f64,
-) -> PyResult<Bound<'py, PyAny>> {
-    if let Ok(v) = x.extract::<f64>() {
-        return Ok(f(v).into_pyobject(py)?.into_any());
-    }
-    let np = py.import("numpy")?;
-    let arr = np.call_method1("asarray", (x, "float64"))?;
-    let flat: PyReadonlyArray1<f64> = arr.call_method0("ravel")?.extract()?;
-    let out: Vec<f64> = flat.as_array().iter().map(|v| f(*v)).collect();
-    let res = PyArray1::from_vec(py, out);
-    Ok(res
-        .reshape(arr.getattr("shape")?.extract::<Vec<usize>>()?)?
-        .into_any())
-}
 
 macro_rules! law_class {
     ($name:ident, $doc:literal, ($($field:ident),*), $build:expr) => {
@@ -71,7 +53,7 @@ macro_rules! law_class {
         impl $name {
             pub fn feedback<T: Real>(&self) -> Feedback<T> {
                 let $name { $($field),* } = *self;
-                $(let $field = T::c($field);)*
+                $(let $field = T::from_f64($field);)*
                 $build
             }
         }
@@ -80,31 +62,31 @@ macro_rules! law_class {
 
 law_class!(
     Linear,
-    "Linear law `h(s) = -k s` (eq. lfmi).",
+    "Linear law `h(s) = -k s` (eq. (59) (lfmi)).",
     (k),
     Feedback::Linear { k }
 );
 law_class!(
     FiniteTime,
-    "Finite-time law `h(s) = -k |s|^p sign(s)`, `0 < p < 1` (eq. fn).",
+    "Finite-time law `h(s) = -k |s|^p sign(s)`, `0 < p < 1` (eq. (37) (fn)).",
     (k, p),
     Feedback::FiniteTime { k, p }
 );
 law_class!(
     FixedTime,
-    "Fixed-time law `h(s) = -alpha |s|^p sign(s) - beta |s|^q sign(s)`, `0 < p < 1 < q` (eq. RFCs).",
+    "Fixed-time law `h(s) = -alpha |s|^p sign(s) - beta |s|^q sign(s)`, `0 < p < 1 < q` (eq. (61) (RFCs)).",
     (alpha, p, beta, q),
     Feedback::FixedTime { alpha, p, beta, q }
 );
 law_class!(
     VariableExponent,
-    "Continuous variable-exponent law (eq. fxe): exponent r_b at 0, r_1 at |s| = 1, r_t at infinity.",
+    "Continuous variable-exponent law (eq. (45) (fxe)): exponent r_b at 0, r_1 at |s| = 1, r_t at infinity.",
     (k, r_b, r_1, r_t),
     Feedback::VariableExponent { k, r_b, r_1, r_t }
 );
 law_class!(
     MoulayDiscontinuous,
-    "The discontinuous variable-exponent law of Moulay et al. (eq. fvec), for comparison only.",
+    "The discontinuous variable-exponent law of Moulay et al. (eq. (58) (fvec)), for comparison only.",
     (beta, lambda_, mu),
     Feedback::MoulayDiscontinuous {
         beta,
@@ -145,7 +127,7 @@ impl Law {
         if let Ok(l) = obj.cast::<MoulayDiscontinuous>() {
             return Ok(Law::Moulay(*l.get()));
         }
-        Err(crate::errors::ConfigError::new_err(format!(
+        Err(ConfigError::new_err(format!(
             "{name} must be a law (Linear, FiniteTime, FixedTime, VariableExponent, \
              MoulayDiscontinuous){}, got {}",
             if name == "feedback" {
@@ -166,31 +148,46 @@ impl Law {
             Law::Moulay(l) => l.feedback(),
         }
     }
-}
 
-/// Parses a transition name; errors name the argument `arg`.
-pub fn parse_transition(name: &str, arg: &str) -> PyResult<Transition> {
-    match name {
-        "exponential" => Ok(Transition::Exponential),
-        "cubic" => Ok(Transition::Cubic),
-        "quintic" => Ok(Transition::Quintic),
-        "sine" => Ok(Transition::Sine),
-        other => Err(crate::errors::ConfigError::new_err(format!(
-            "{arg} must be one of 'exponential', 'cubic', 'quintic', 'sine' (got {other:?})"
-        ))),
+    /// The law object of a core law.
+    pub fn from_feedback<T: Real>(f: &Feedback<T>) -> Self {
+        let x = |v: T| v.to_f64_lossless();
+        match *f {
+            Feedback::Linear { k } => Law::Linear(Linear { k: x(k) }),
+            Feedback::FiniteTime { k, p } => Law::FiniteTime(FiniteTime { k: x(k), p: x(p) }),
+            Feedback::FixedTime { alpha, p, beta, q } => Law::FixedTime(FixedTime {
+                alpha: x(alpha),
+                p: x(p),
+                beta: x(beta),
+                q: x(q),
+            }),
+            Feedback::VariableExponent { k, r_b, r_1, r_t } => Law::VariableExponent(VariableExponent {
+                k: x(k),
+                r_b: x(r_b),
+                r_1: x(r_1),
+                r_t: x(r_t),
+            }),
+            Feedback::MoulayDiscontinuous { beta, lambda, mu } => Law::Moulay(MoulayDiscontinuous {
+                beta: x(beta),
+                lambda_: x(lambda),
+                mu: x(mu),
+            }),
+        }
+    }
+
+    /// The Python object.
+    pub fn to_object<'py>(self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        Ok(match self {
+            Law::Linear(l) => l.into_pyobject(py)?.into_any(),
+            Law::FiniteTime(l) => l.into_pyobject(py)?.into_any(),
+            Law::FixedTime(l) => l.into_pyobject(py)?.into_any(),
+            Law::VariableExponent(l) => l.into_pyobject(py)?.into_any(),
+            Law::Moulay(l) => l.into_pyobject(py)?.into_any(),
+        })
     }
 }
 
-pub fn transition_name(t: Transition) -> &'static str {
-    match t {
-        Transition::Exponential => "exponential",
-        Transition::Cubic => "cubic",
-        Transition::Quintic => "quintic",
-        Transition::Sine => "sine",
-    }
-}
-
-/// Smooth skewed manifold design (SSMD, eq. SSMD).
+/// Smooth skewed manifold design (SSMD, eq. (14)).
 #[pyclass(frozen, eq, module = "famcc._core")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Smooth {
@@ -201,7 +198,7 @@ pub struct Smooth {
     pub transition: Transition,
 }
 
-/// Nonsingular skewed manifold design (NSMD, eq. NSMD).
+/// Nonsingular skewed manifold design (NSMD, eq. (15)).
 #[pyclass(frozen, eq, module = "famcc._core")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Nonsingular {
@@ -214,12 +211,6 @@ pub struct Nonsingular {
     pub transition: Transition,
 }
 
-fn check_skew<T: Real>(s: Skew<T>) -> PyResult<()> {
-    SkewedLaw::new(Feedback::Linear { k: T::one() }, Some(s))
-        .map(|_| ())
-        .map_err(config_err)
-}
-
 /// The Python methods shared by the skew classes: construction with
 /// validation, the transition's name, `repr` and pickling.
 macro_rules! skew_methods {
@@ -227,22 +218,22 @@ macro_rules! skew_methods {
         #[pymethods]
         impl $name {
             #[new]
-            #[pyo3(signature = ($($field,)* transition = "exponential"))]
+            #[pyo3(signature = ($($field,)* transition = TRANSITION.default_name()))]
             fn new($($field: f64,)* transition: &str) -> PyResult<Self> {
-                let s = Self { $($field,)* transition: parse_transition(transition, "transition")? };
-                check_skew(s.skew::<f64>())?;
+                let s = Self { $($field,)* transition: TRANSITION.parse(transition, "transition")? };
+                s.skew::<f64>().validate().map_err(config_err)?;
                 Ok(s)
             }
             #[getter(transition)]
             fn get_transition(&self) -> &'static str {
-                transition_name(self.transition)
+                TRANSITION.name(self.transition)
             }
             fn __repr__(&self) -> String {
                 let parts: Vec<String> = vec![$(format!("{}={:?}", stringify!($field), self.$field)),*];
-                format!("{}({}, transition='{}')", stringify!($name), parts.join(", "), transition_name(self.transition))
+                format!("{}({}, transition='{}')", stringify!($name), parts.join(", "), TRANSITION.name(self.transition))
             }
             fn __getnewargs__(&self) -> ($(skew_methods!(@f64 $field),)* &'static str) {
-                ($(self.$field,)* transition_name(self.transition))
+                ($(self.$field,)* TRANSITION.name(self.transition))
             }
         }
     };
@@ -255,8 +246,8 @@ skew_methods!(Nonsingular, (eps_s, eps_z, k_pp));
 impl Smooth {
     pub fn skew<T: Real>(&self) -> Skew<T> {
         Skew {
-            eps_s: T::c(self.eps_s),
-            eps_z: T::c(self.eps_z),
+            eps_s: T::from_f64(self.eps_s),
+            eps_z: T::from_f64(self.eps_z),
             kind: SkewKind::Smooth,
             transition: self.transition,
         }
@@ -266,10 +257,10 @@ impl Smooth {
 impl Nonsingular {
     pub fn skew<T: Real>(&self) -> Skew<T> {
         Skew {
-            eps_s: T::c(self.eps_s),
-            eps_z: T::c(self.eps_z),
+            eps_s: T::from_f64(self.eps_s),
+            eps_z: T::from_f64(self.eps_z),
             kind: SkewKind::Nonsingular {
-                k_pp: T::c(self.k_pp),
+                k_pp: T::from_f64(self.k_pp),
             },
             transition: self.transition,
         }
@@ -294,7 +285,7 @@ impl SkewSpec {
         if let Ok(s) = obj.cast::<Nonsingular>() {
             return Ok(Some(SkewSpec::Nonsingular(*s.get())));
         }
-        Err(crate::errors::ConfigError::new_err(format!(
+        Err(ConfigError::new_err(format!(
             "skew must be None, Smooth, Nonsingular, or a list of them, got {}",
             obj.repr()?
         )))
@@ -306,163 +297,31 @@ impl SkewSpec {
             SkewSpec::Nonsingular(s) => s.skew(),
         }
     }
-}
 
-/// The high-gain differentiator (eq. HGD): gain `mu` (s), Hurwitz
-/// coefficients `a`, discretization "exact" (zero-order hold), "euler" or
-/// "tustin", and an optional saturation `limits` of the estimates fed to
-/// the law.
-#[pyclass(frozen, module = "famcc._core")]
-#[derive(Clone, Debug)]
-pub struct HighGain {
-    #[pyo3(get)]
-    pub mu: f64,
-    pub a: Vec<f64>,
-    pub discretization: Discretization,
-    pub limits: Option<Vec<f64>>,
-}
-
-fn parse_discretization(name: &str) -> PyResult<Discretization> {
-    match name {
-        "exact" => Ok(Discretization::Exact),
-        "euler" => Ok(Discretization::Euler),
-        "tustin" => Ok(Discretization::Tustin),
-        other => Err(crate::errors::ConfigError::new_err(format!(
-            "discretization must be one of 'exact', 'euler', 'tustin' (got {other:?})"
-        ))),
-    }
-}
-
-pub fn discretization_name(d: Discretization) -> &'static str {
-    match d {
-        Discretization::Exact => "exact",
-        Discretization::Euler => "euler",
-        Discretization::Tustin => "tustin",
-    }
-}
-
-fn finite_list(name: &str, v: &[f64]) -> PyResult<()> {
-    if v.iter().any(|x| !x.is_finite()) && name == "a" {
-        return Err(crate::errors::ConfigError::new_err(format!(
-            "{name} must be finite"
-        )));
-    }
-    Ok(())
-}
-
-#[pymethods]
-impl HighGain {
-    #[new]
-    #[pyo3(signature = (mu, a, discretization = "exact", limits = None))]
-    fn new(mu: f64, a: Vec<f64>, discretization: &str, limits: Option<Vec<f64>>) -> PyResult<Self> {
-        if a.is_empty() || a.len() > crate::controller::MAX_ORDER {
-            return Err(crate::errors::ConfigError::new_err(format!(
-                "a must have between 1 and {} coefficients (one per order), got {}",
-                crate::controller::MAX_ORDER,
-                a.len()
-            )));
+    /// The skew object of a core skew.
+    pub fn from_skew<T: Real>(s: &Skew<T>) -> Self {
+        let (eps_s, eps_z) = (s.eps_s.to_f64_lossless(), s.eps_z.to_f64_lossless());
+        let transition = s.transition;
+        match s.kind {
+            SkewKind::Smooth => SkewSpec::Smooth(Smooth {
+                eps_s,
+                eps_z,
+                transition,
+            }),
+            SkewKind::Nonsingular { k_pp } => SkewSpec::Nonsingular(Nonsingular {
+                eps_s,
+                eps_z,
+                k_pp: k_pp.to_f64_lossless(),
+                transition,
+            }),
         }
-        finite_list("a", &a)?;
-        if let Some(l) = &limits {
-            if l.len() != a.len() {
-                return Err(crate::errors::ConfigError::new_err(format!(
-                    "limits must have one entry per order ({}), got {}",
-                    a.len(),
-                    l.len()
-                )));
-            }
-            if l.iter().any(|v| v.is_nan() || *v <= 0.0) {
-                return Err(crate::errors::ConfigError::new_err(
-                    "limits must all be > 0 (inf allowed)",
-                ));
-            }
-        }
-        let h = Self {
-            mu,
-            a,
-            discretization: parse_discretization(discretization)?,
-            limits,
-        };
-        crate::controller::validate_high_gain(&h)?;
-        Ok(h)
     }
 
-    /// The paper's default for an order: mu = 0.01, a = (4, 4) at order 2,
-    /// (4, 6, 4) at order 3, binomial (s + 2)^n otherwise.
-    #[staticmethod]
-    #[pyo3(signature = (order, mu = 0.01, discretization = "exact"))]
-    fn default(order: usize, mu: f64, discretization: &str) -> PyResult<Self> {
-        Self::new(mu, default_coefficients(order)?, discretization, None)
-    }
-
-    #[getter]
-    fn a<'py>(&self, py: Python<'py>) -> Bound<'py, PyTuple> {
-        PyTuple::new(py, &self.a).unwrap_or_else(|_| PyTuple::empty(py))
-    }
-    #[getter(discretization)]
-    fn get_discretization(&self) -> &'static str {
-        discretization_name(self.discretization)
-    }
-    #[getter(limits)]
-    fn get_limits<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyTuple>> {
-        self.limits.as_ref().and_then(|l| PyTuple::new(py, l).ok())
-    }
-    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
-        other
-            .cast::<HighGain>()
-            .map(|o| {
-                let o = o.get();
-                o.mu == self.mu
-                    && o.a == self.a
-                    && o.discretization == self.discretization
-                    && o.limits == self.limits
-            })
-            .unwrap_or(false)
-    }
-    fn __repr__(&self) -> String {
-        let mut s = format!(
-            "HighGain(mu={:?}, a={:?}, discretization='{}'",
-            self.mu,
-            self.a,
-            discretization_name(self.discretization)
-        );
-        if let Some(l) = &self.limits {
-            s.push_str(&format!(", limits={l:?}"));
-        }
-        s.push(')');
-        s
-    }
-    #[allow(clippy::type_complexity)]
-    fn __getnewargs__(&self) -> (f64, Vec<f64>, &'static str, Option<Vec<f64>>) {
-        (
-            self.mu,
-            self.a.clone(),
-            discretization_name(self.discretization),
-            self.limits.clone(),
-        )
-    }
-}
-
-pub fn default_coefficients(order: usize) -> PyResult<Vec<f64>> {
-    match order {
-        2 => Ok(vec![4.0, 4.0]),
-        3 => Ok(vec![4.0, 6.0, 4.0]),
-        n if (1..=crate::controller::MAX_ORDER).contains(&n) => {
-            // binomial coefficients of (s + 2)^n
-            let mut c = vec![1.0_f64];
-            for _ in 0..n {
-                let mut next = vec![0.0; c.len() + 1];
-                for (i, v) in c.iter().enumerate() {
-                    next[i] += v;
-                    next[i + 1] += 2.0 * v;
-                }
-                c = next;
-            }
-            Ok(c[1..].to_vec())
-        }
-        n => Err(crate::errors::ConfigError::new_err(format!(
-            "order must be between 1 and {} (got {n})",
-            crate::controller::MAX_ORDER
-        ))),
+    /// The Python object.
+    pub fn to_object<'py>(self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        Ok(match self {
+            SkewSpec::Smooth(s) => s.into_pyobject(py)?.into_any(),
+            SkewSpec::Nonsingular(s) => s.into_pyobject(py)?.into_any(),
+        })
     }
 }

@@ -1,21 +1,50 @@
 //! The private `famcc._core` extension module: a thin pyo3 layer over
-//! famcc-core (parsing, conversion, errors). It holds no control logic; the
-//! public API lives in the Python package `famcc`.
+//! famcc-core (and the paper's designs and plants of famcc-paper). It holds
+//! no control logic, no rule and no default of its own; the public API lives
+//! in the Python package `famcc`.
+//!
+//! | module | concern |
+//! |---|---|
+//! | `names` | Python names of the core's enumerations |
+//! | `args` | the constructor's arguments, parsed into a typed `spec` |
+//! | `spec` | a controller's configuration, fed to the core's builder |
+//! | `kwargs` | a spec as keyword arguments (`config()`, `repr`, pickling) |
+//! | `orders`, `dispatch` | run-time order and float type to the core's generics |
+//! | `state` | the state codec (the core's `Snapshot` layout) |
+//! | `diagnostics` | `Diagnostics` |
+//! | `controller` | `Controller`'s Python methods |
+//! | `bank` | `ControllerBank` |
+//! | `laws`, `differentiator` | laws, skews, `HighGain` |
+//! | `functions`, `array` | building blocks as functions |
+//! | `paper` | the paper's designs and plants |
 
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 
+mod args;
+mod array;
 mod bank;
 mod controller;
 mod design;
+mod diagnostics;
+mod differentiator;
+mod dispatch;
 mod errors;
 mod functions;
+mod kwargs;
 mod laws;
+mod names;
+mod orders;
+mod paper;
+mod spec;
+mod state;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add("MAX_ORDER", controller::MAX_ORDER)?;
+    m.add("MAX_ORDER", famcc_core::config::MAX_ORDER)?;
+    m.add("STATE_FIELDS", PyTuple::new(py, famcc_core::SNAPSHOT_FIELDS)?)?;
     for ty in [
         py.get_type::<errors::ConfigError>(),
         py.get_type::<errors::StepError>(),
@@ -32,21 +61,26 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<laws::MoulayDiscontinuous>()?;
     m.add_class::<laws::Smooth>()?;
     m.add_class::<laws::Nonsingular>()?;
-    m.add_class::<laws::HighGain>()?;
+    m.add_class::<differentiator::HighGain>()?;
     m.add_class::<controller::PyController>()?;
-    m.add_class::<controller::Diagnostics>()?;
+    m.add_class::<controller::CallFloor>()?;
+    m.add_class::<diagnostics::Diagnostics>()?;
     m.add_class::<bank::ControllerBank>()?;
     m.add_class::<functions::Skewed>()?;
-    m.add_function(wrap_pyfunction!(controller::_controller_from_state, m)?)?;
+    m.add_class::<paper::PaperPlant>()?;
+    m.add_function(wrap_pyfunction!(kwargs::_controller_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(functions::transition_t, m)?)?;
     m.add_function(wrap_pyfunction!(functions::transition_s, m)?)?;
     m.add_function(wrap_pyfunction!(functions::transition_u, m)?)?;
     m.add_function(wrap_pyfunction!(functions::rho, m)?)?;
     m.add_function(wrap_pyfunction!(functions::skewed, m)?)?;
-    m.add_function(wrap_pyfunction!(functions::manifold_values, m)?)?;
+    m.add_function(wrap_pyfunction!(functions::manifold, m)?)?;
     m.add_function(wrap_pyfunction!(functions::finite_time, m)?)?;
     m.add_function(wrap_pyfunction!(functions::variable_exponent, m)?)?;
     m.add_function(wrap_pyfunction!(functions::fixed_time, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::paper_design, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::paper_corollary_bound, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::paper_input_limits, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_rules, m)?)?;
     Ok(())
 }

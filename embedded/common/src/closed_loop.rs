@@ -5,9 +5,17 @@
 //! the report lines are printed by both and compared verbatim.
 
 use crate::out::Sink;
-use crate::plant::{rk4, Clock, Plant};
 use crate::Digest;
 use famcc_core::{Controller, StepError};
+use famcc_paper::plants::{rk4, Clock, Plant};
+use libm::{cosf, sinf};
+
+/// The time functions at `t` from two libm calls (the rest by double-angle
+/// formulas).
+#[inline]
+fn clock_at(t: f32) -> Clock<f32> {
+    Clock::from_sin_cos(sinf(t), cosf(t))
+}
 
 /// The most RK4 substeps per sample [`run`] takes.
 pub const MAX_SUBSTEPS: usize = 16;
@@ -113,7 +121,7 @@ impl Default for Stats {
 /// roundings), so libm's f32 trigonometry (double-precision kernels: soft
 /// float on the Cortex-M4F) runs only for the state-dependent terms. `record(k, e, v)`
 /// sees every sample (the firmware keeps `e` for the replay benchmark).
-pub fn run<const N: usize, P: Plant<N>>(
+pub fn run<const N: usize, P: Plant<f32, N>>(
     sc: &Scenario,
     plant: &P,
     ctrl: &mut Controller<f32, N>,
@@ -127,12 +135,12 @@ pub fn run<const N: usize, P: Plant<N>>(
     // computed once; per sample they are rotated by the sample's own.
     let mut offsets = [Clock::from_sin_cos(0.0, 1.0); 2 * MAX_SUBSTEPS + 1];
     for (j, o) in offsets.iter_mut().enumerate().take(2 * sub + 1) {
-        *o = Clock::at(j as f32 * 0.5 * h);
+        *o = clock_at(j as f32 * 0.5 * h);
     }
     let (lo, hi) = sc.limits;
     for k in 0..sc.steps {
         let t = k as f32 * sc.dt;
-        let now = Clock::at(t);
+        let now = clock_at(t);
         let e = x[0] - now.sin;
         let v = match ctrl.step(e) {
             Ok(v) => v,

@@ -2,19 +2,17 @@
 //! (x86_64): the same f32 code runs on both, so their outputs can be
 //! compared bit for bit.
 //!
-//! - [`plant`]: the paper's second- and third-order plants (docs/design.md §6.3,
-//!   variants "paper"/"code"), integrated in f32 by RK4 with substeps;
-//! - [`designs`]: the paper's example 1 and example 3 controllers in f32;
-//! - [`closed_loop`]: the sampled loop, its record and its checks;
+//! - [`closed_loop`]: the sampled loop over the paper's plants (famcc-paper,
+//!   in f32, RK4 with substeps), its record and its checks;
+//! - [`suite`]: the runs both builds make, with the paper's example 1 and
+//!   example 3 designs (famcc-paper) in f32;
 //! - [`vectors`]: the deterministic test-vector input sequence;
 //! - [`out`]: a tiny integer/hex formatter (no `core::fmt`: it costs ~15 KB
 //!   of flash and must stay out of the measured code).
 #![no_std]
 
 pub mod closed_loop;
-pub mod designs;
 pub mod out;
-pub mod plant;
 pub mod suite;
 pub mod vectors;
 

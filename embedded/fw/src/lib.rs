@@ -230,3 +230,42 @@ mod rt {
         start.wrapping_sub(end) & 0x00FF_FFFF
     }
 }
+
+/// A flash-size probe program: builds `$build` (a `Result`; exit status 1 on
+/// error), then maps a volatile input to a volatile output with `$each` as
+/// many times as a volatile count says (never, in practice), so that exactly
+/// the code `$build` and `$each` need is linked. On the host the program is
+/// empty.
+#[macro_export]
+macro_rules! size_probe {
+    ($build:expr, |$c:ident, $e:ident| $each:expr) => {
+        #[cfg(not(target_os = "none"))]
+        fn main() {}
+
+        #[cfg(target_os = "none")]
+        mod app {
+            use core::ptr::{addr_of, addr_of_mut, read_volatile, write_volatile};
+
+            static mut INPUT: f32 = 0.0;
+            static mut OUTPUT: f32 = 0.0;
+            static mut COUNT: u32 = 0;
+
+            #[no_mangle]
+            extern "C" fn famcc_fw_main() -> ! {
+                #[allow(unused_mut, unused_variables)]
+                let Ok(mut $c) = $build
+                else {
+                    $crate::exit(1)
+                };
+                // SAFETY: single-threaded; volatile so that nothing is optimised away.
+                unsafe {
+                    for _ in 0..read_volatile(addr_of!(COUNT)) {
+                        let $e = read_volatile(addr_of!(INPUT));
+                        write_volatile(addr_of_mut!(OUTPUT), $each);
+                    }
+                }
+                $crate::exit(0)
+            }
+        }
+    };
+}

@@ -29,9 +29,8 @@ mod app {
         cmdline, exit, famcc_fw_step_o2, famcc_fw_step_o3, systick_now, systick_start, ticks, Out,
     };
     use famcc_fw_common::out::Sink;
-    use famcc_fw_common::plant::Variant;
     use famcc_fw_common::suite::{self, STEPS};
-    use famcc_fw_common::{designs, Digest};
+    use famcc_fw_common::Digest;
 
     const N: usize = STEPS as usize;
 
@@ -74,10 +73,7 @@ mod app {
     }
 
     fn controllers() -> (Controller<f32, 2>, Controller<f32, 3>) {
-        match (
-            designs::example1(Variant::Code, 1e-3),
-            designs::example3(Variant::Code, 1e-3),
-        ) {
+        match (suite::example1(), suite::example3()) {
             (Ok(a), Ok(b)) => (a, b),
             _ => {
                 Out::new().s("FAIL: example config rejected").nl();
@@ -161,10 +157,10 @@ mod app {
                 let k = (k as usize).min(N);
                 let (mut c2, mut c3) = controllers();
                 if mode == b"bench2" {
-                    suite::example1_loop(&suite::EX1, &mut Quiet, &mut |i, e, _| rec.e2[i as usize] = e);
+                    suite::example1_loop(false, &mut Quiet, &mut |i, e, _| rec.e2[i as usize] = e);
                     bench2(&mut c2, &rec.e2[..k]);
                 } else {
-                    suite::example3_loop(&suite::EX3, &mut Quiet, &mut |i, e, _| rec.e3[i as usize] = e);
+                    suite::example3_loop(false, &mut Quiet, &mut |i, e, _| rec.e3[i as usize] = e);
                     bench3(&mut c3, &rec.e3[..k]);
                 }
                 exit(0)
@@ -172,10 +168,10 @@ mod app {
             (b"worst2", _) | (b"worst3", _) => {
                 let (mut c2, mut c3) = controllers();
                 let (max, sum, at) = if mode == b"worst2" {
-                    suite::example1_loop(&suite::EX1, &mut Quiet, &mut |i, e, _| rec.e2[i as usize] = e);
+                    suite::example1_loop(false, &mut Quiet, &mut |i, e, _| rec.e2[i as usize] = e);
                     worst(&mut c2, &rec.e2, famcc_fw_step_o2)
                 } else {
-                    suite::example3_loop(&suite::EX3, &mut Quiet, &mut |i, e, _| rec.e3[i as usize] = e);
+                    suite::example3_loop(false, &mut Quiet, &mut |i, e, _| rec.e3[i as usize] = e);
                     worst(&mut c3, &rec.e3, famcc_fw_step_o3)
                 };
                 out.s("worst ")

@@ -32,8 +32,7 @@ use crate::differentiator::Discretization;
 use crate::error::ConfigError;
 use num_traits::Float as F;
 
-/// Largest system order the design handles (the bindings' order range).
-pub const MAX_ORDER: usize = 8;
+pub use crate::config::MAX_ORDER;
 /// The phase budget of the linearized sampled loop, radians.
 pub const PHASE_BUDGET: f64 = 0.8;
 /// The smallest differentiator time constant, in sample periods.
@@ -106,9 +105,7 @@ impl Requirements {
                 Err(ConfigError::new(name, "must be finite and > 0"))
             }
         };
-        if !(1..=MAX_ORDER).contains(&self.order) {
-            return Err(ConfigError::new("order", "must be between 1 and 8"));
-        }
+        crate::config::check_order(self.order)?;
         pos(self.dt, "dt")?;
         pos(self.eps, "eps")?;
         pos(self.settle_time, "settle_time")?;

@@ -1,80 +1,37 @@
-//! Shared closed-loop test support: the paper's plants (docs/design.md §6.3),
-//! RK4 integration between samples, and the paper's controller designs.
-#![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used)]
+//! Shared closed-loop test support: a sampled loop over the paper's plants
+//! and designs, which come from famcc-paper (docs/design.md §6.2-6.3).
+#![allow(dead_code, unused_imports, clippy::indexing_slicing, clippy::unwrap_used)]
 
-use famcc_core::{Config, Constraint, Controller, Discretization, Feedback, HighGain, Latch, Real, Skew};
+use famcc_core::{Config, Controller, Real};
+pub use famcc_paper::designs::Variant;
+use famcc_paper::designs::{self, UNSATURATED_LIMITS};
+use famcc_paper::plants::{self, Clock, Instant};
+pub use famcc_paper::plants::{output_derivatives, Plant, SecondOrder as Second, ThirdOrder as Third};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Variant {
-    Paper,
-    Code,
+/// A plant `x' = f(t, x, u)` with `y = x1`: the paper's plants (any
+/// [`Plant`]) and the tests' own (random or scaled) ones.
+pub trait TimePlant<const N: usize> {
+    fn initial_state(&self) -> [f64; N];
+    fn rate(&self, t: f64, x: &[f64; N], u: f64) -> [f64; N];
 }
 
-/// A strict-feedback plant x' = f(t, x, u) with y = x1.
-pub trait Plant<const N: usize> {
-    fn x0(&self) -> [f64; N];
-    fn rhs(&self, t: f64, x: &[f64; N], u: f64) -> [f64; N];
-}
-
-/// Example 1/2 plant (eq. System_sim); variant "code" has disturbance amplitude 3.
-pub struct Second(pub Variant);
-
-impl Plant<2> for Second {
-    fn x0(&self) -> [f64; 2] {
-        [-1.0, 0.5]
+impl<const N: usize, P: Plant<f64, N>> TimePlant<N> for P {
+    fn initial_state(&self) -> [f64; N] {
+        self.x0()
     }
-    fn rhs(&self, t: f64, x: &[f64; 2], u: f64) -> [f64; 2] {
-        let amp = if self.0 == Variant::Code { 3.0 } else { 1.0 };
-        let (x1, x2) = (x[0], x[1]);
-        [
-            (1.0 + 0.1 * x1.cos() + 0.1 * t.sin()) * x2 - x1 + t.sin(),
-            (2.0 + 0.2 * (x1 * x2).sin() + 0.1 * t.cos()) * u - (x1 * x1 - 1.0) * x2
-                + amp * (t.sin() + (2.0 * t).cos()),
-        ]
+    fn rate(&self, t: f64, x: &[f64; N], u: f64) -> [f64; N] {
+        self.rhs(&Clock::at(t), x, u)
     }
-}
-
-/// Example 3 plant (eq. System_sim3) with the factor x2 restored in x1'.
-pub struct Third(pub Variant);
-
-impl Plant<3> for Third {
-    fn x0(&self) -> [f64; 3] {
-        match self.0 {
-            Variant::Paper => [1.0, -0.2, 0.4],
-            Variant::Code => [1.0, 0.5, 4.0],
-        }
-    }
-    fn rhs(&self, t: f64, x: &[f64; 3], u: f64) -> [f64; 3] {
-        let (x1, x2, x3) = (x[0], x[1], x[2]);
-        [
-            (1.0 + 0.1 * x1.sin() + 0.1 * t.cos()) * x2 - x1 + t.cos(),
-            (1.0 + 0.1 * (x1 * x2).cos() + 0.1 * t.sin()) * x3 - (x1 * x1 - 1.0) * x2 + t.sin(),
-            (2.0 + 0.2 * (x1 * x2 * x3).sin() + 0.1 * t.cos()) * u - (x1 * x1 + x2) * x3
-                + 10.0 * t.sin()
-                + 10.0 * (2.0 * t).cos(),
-        ]
-    }
-}
-
-fn axpy<const N: usize>(x: &[f64; N], a: f64, k: &[f64; N]) -> [f64; N] {
-    let mut out = *x;
-    for i in 0..N {
-        out[i] += a * k[i];
-    }
-    out
 }
 
 /// Classical RK4 over [t, t + h] with the input held.
-pub fn rk4<const N: usize, P: Plant<N>>(p: &P, t: f64, x: &[f64; N], u: f64, h: f64) -> [f64; N] {
-    let k1 = p.rhs(t, x, u);
-    let k2 = p.rhs(t + h / 2.0, &axpy(x, h / 2.0, &k1), u);
-    let k3 = p.rhs(t + h / 2.0, &axpy(x, h / 2.0, &k2), u);
-    let k4 = p.rhs(t + h, &axpy(x, h, &k3), u);
-    let mut out = *x;
-    for i in 0..N {
-        out[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-    }
-    out
+pub fn rk4<const N: usize, P: TimePlant<N>>(p: &P, t: f64, x: &[f64; N], u: f64, h: f64) -> [f64; N] {
+    let at = |i: Instant| match i {
+        Instant::Start => t,
+        Instant::Middle => t + h / 2.0,
+        Instant::End => t + h,
+    };
+    plants::rk4_with(|i, x| p.rate(at(i), x, u), x, h)
 }
 
 /// One closed-loop run's record.
@@ -119,21 +76,21 @@ impl Run {
 }
 
 /// Runs a sampled loop: controller at `dt`, plant by RK4 with `sub` substeps.
-pub fn run<T: Real, const N: usize, P: Plant<N>>(
+pub fn run<T: Real, const N: usize, P: TimePlant<N>>(
     plant: &P,
     ctrl: &mut Controller<T, N>,
     t_end: f64,
     limits: (f64, f64),
     sub: usize,
 ) -> Run {
-    let dt = ctrl.config().dt.to_f64_lossless();
+    let dt = ctrl.config().dt().to_f64_lossless();
     let steps = (t_end / dt).round() as usize;
-    let mut x = plant.x0();
+    let mut x = plant.initial_state();
     let mut r = Run::default();
     for k in 0..=steps {
         let t = k as f64 * dt;
         let e = x[0] - t.sin();
-        let v = match ctrl.step(T::c(e)) {
+        let v = match ctrl.step(T::from_f64(e)) {
             Ok(v) => v.to_f64_lossless(),
             Err(_) => {
                 r.nonfinite = true;
@@ -167,98 +124,23 @@ pub fn run<T: Real, const N: usize, P: Plant<N>>(
     r
 }
 
-pub const UNSAT: (f64, f64) = (-100.0, 100.0);
+pub const UNSAT: (f64, f64) = UNSATURATED_LIMITS;
 
 /// Example 1: LaMC, FiniteTime(1, 0.5), eps_x = 0.1, k_u = 5.
 pub fn example1<T: Real>(variant: Variant, dt: f64) -> Controller<T, 2> {
-    let mut cfg = Config::<T, 2>::new(
-        T::c(dt),
-        &[(
-            Feedback::FiniteTime {
-                k: T::c(1.0),
-                p: T::c(0.5),
-            },
-            None,
-        )],
-        Constraint::Lateral { eps: T::c(0.1) },
-        T::c(1.0),
-        T::c(5.0),
-    )
-    .unwrap();
-    finish(&mut cfg, variant, [T::c(4.0), T::c(4.0)]);
-    Controller::new(cfg).unwrap()
+    Controller::new(designs::example1(variant, T::from_f64(dt)).unwrap())
 }
 
 /// Example 2: LoMC, VariableExponent(1.5, 0.5, 2, 3) with SSMD, eps_y = 0.15, k_u = 2.
 pub fn example2<T: Real>(variant: Variant, dt: f64) -> Controller<T, 2> {
-    let eps_s = if variant == Variant::Paper { 0.15 } else { 0.225 };
-    let mut cfg = Config::<T, 2>::new(
-        T::c(dt),
-        &[(
-            Feedback::VariableExponent {
-                k: T::c(1.5),
-                r_b: T::c(0.5),
-                r_1: T::c(2.0),
-                r_t: T::c(3.0),
-            },
-            Some(Skew::smooth(T::c(eps_s), T::c(0.1))),
-        )],
-        Constraint::Longitudinal { eps: T::c(0.15) },
-        T::c(1.0),
-        T::c(2.0),
-    )
-    .unwrap();
-    finish(&mut cfg, variant, [T::c(4.0), T::c(4.0)]);
-    Controller::new(cfg).unwrap()
+    Controller::new(designs::example2(variant, T::from_f64(dt)).unwrap())
 }
 
 /// Example 3: LoMC, two fixed-time NSMD stages, k_u = 30.
 pub fn example3<T: Real>(variant: Variant, dt: f64) -> Controller<T, 3> {
-    example3_cfg(variant, dt)
-        .map(|c| Controller::new(c).unwrap())
-        .unwrap()
+    Controller::new(example3_cfg(variant, dt).unwrap())
 }
 
 pub fn example3_cfg<T: Real>(variant: Variant, dt: f64) -> Option<Config<T, 3>> {
-    let (eps_s1, eps_y) = if variant == Variant::Paper {
-        (0.2, 5.0)
-    } else {
-        (0.1, 3.0)
-    };
-    let mut cfg = Config::<T, 3>::new(
-        T::c(dt),
-        &[
-            (
-                Feedback::FixedTime {
-                    alpha: T::c(1.0),
-                    p: T::c(0.5),
-                    beta: T::c(0.5),
-                    q: T::c(2.0),
-                },
-                Some(Skew::nonsingular(T::c(eps_s1), T::c(0.1), T::c(0.1))),
-            ),
-            (
-                Feedback::FixedTime {
-                    alpha: T::c(2.0),
-                    p: T::c(0.5),
-                    beta: T::c(1.0),
-                    q: T::c(2.0),
-                },
-                Some(Skew::nonsingular(T::c(eps_y), T::c(0.2), T::c(1.0))),
-            ),
-        ],
-        Constraint::Longitudinal { eps: T::c(eps_y) },
-        T::c(1.0),
-        T::c(30.0),
-    )
-    .ok()?;
-    finish(&mut cfg, variant, [T::c(4.0), T::c(6.0), T::c(4.0)]);
-    Some(cfg)
-}
-
-fn finish<T: Real, const N: usize>(cfg: &mut Config<T, N>, variant: Variant, a: [T; N]) {
-    cfg.differentiator = Some(HighGain::new(T::c(0.01), a, Discretization::Exact));
-    if variant == Variant::Code {
-        cfg.latch = Latch::Authors;
-    }
+    designs::example3(variant, T::from_f64(dt)).ok()
 }

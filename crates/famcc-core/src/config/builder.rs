@@ -1,0 +1,244 @@
+//! [`ConfigBuilder`]: the values of a configuration under construction,
+//! and the one place where they are checked.
+
+use super::{check_estimate_limits, Config, DEFAULT_K0, DEFAULT_SETTLE_TIME};
+use crate::error::{positive, ConfigError};
+use crate::{Constraint, Feedback, Gamma, HighGain, Latch, Real, Skew, SkewedLaw, Transition};
+
+/// The flexible-boundary margin a builder was given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Margin<T> {
+    /// [`Constraint::default_rho_e`].
+    Default,
+    /// An explicit `rho_e`, or `None`: no flexible boundary.
+    Given(Option<T>),
+}
+
+/// A [`Config`] under construction; [`ConfigBuilder::build`] validates it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConfigBuilder<T, const N: usize> {
+    dt: T,
+    laws: [(Feedback<T>, Option<Skew<T>>); N],
+    n_laws: usize,
+    constraint: Constraint<T>,
+    settle_time: T,
+    k0: T,
+    k_u: T,
+    gamma: Gamma,
+    rho_e: Margin<T>,
+    transition: Transition,
+    latch: Latch,
+    differentiator: Option<HighGain<T, N>>,
+    initial_derivatives: Option<[T; N]>,
+    estimate_limits: Option<[T; N]>,
+}
+
+impl<T: Real, const N: usize> Config<T, N> {
+    /// A builder with the required values: sample period `dt` (seconds), one
+    /// `(h_p, skew)` per stage (exactly `N - 1`), the constraint with its
+    /// final widths, and the control gain `k_u` (eq. (29), input units).
+    /// Everything else starts at the paper's choice: `k0 = 2`, `T_s = 1` s,
+    /// log Gamma, `rho_e` = [`Constraint::default_rho_e`], the exponential
+    /// transition, the paper's latch, no differentiator (state feedback),
+    /// zero initial derivatives, no estimate limits.
+    pub fn builder(
+        dt: T,
+        laws: &[(Feedback<T>, Option<Skew<T>>)],
+        constraint: Constraint<T>,
+        k_u: T,
+    ) -> ConfigBuilder<T, N> {
+        let mut slots = [(Feedback::Linear { k: T::one() }, None); N];
+        slots.iter_mut().zip(laws.iter()).for_each(|(s, l)| *s = *l);
+        ConfigBuilder {
+            dt,
+            laws: slots,
+            n_laws: laws.len(),
+            constraint,
+            settle_time: T::from_f64(DEFAULT_SETTLE_TIME),
+            k0: T::from_f64(DEFAULT_K0),
+            k_u,
+            gamma: Gamma::default(),
+            rho_e: Margin::Default,
+            transition: Transition::default(),
+            latch: Latch::default(),
+            differentiator: None,
+            initial_derivatives: None,
+            estimate_limits: None,
+        }
+    }
+
+    /// A builder holding this configuration, to derive a changed one.
+    pub fn to_builder(&self) -> ConfigBuilder<T, N> {
+        let mut laws = [(Feedback::Linear { k: T::one() }, None); N];
+        laws.iter_mut()
+            .zip(self.laws().iter())
+            .for_each(|(s, l)| *s = (*l.feedback(), l.skew().copied()));
+        ConfigBuilder {
+            dt: self.dt,
+            laws,
+            n_laws: N.saturating_sub(1),
+            constraint: self.constraint,
+            settle_time: self.settle_time,
+            k0: self.k0,
+            k_u: self.k_u,
+            gamma: self.gamma,
+            rho_e: Margin::Given(self.rho_e),
+            transition: self.transition,
+            latch: self.latch,
+            differentiator: self.differentiator,
+            initial_derivatives: self.initial_derivatives,
+            estimate_limits: self.estimate_limits,
+        }
+    }
+}
+
+impl<T: Real, const N: usize> ConfigBuilder<T, N> {
+    /// Sample period `dt`, seconds.
+    pub fn dt(mut self, dt: T) -> Self {
+        self.dt = dt;
+        self
+    }
+
+    /// Control gain `k_u > 0` (eq. (29)).
+    pub fn k_u(mut self, k_u: T) -> Self {
+        self.k_u = k_u;
+        self
+    }
+
+    /// Constraint type and final half-widths.
+    pub fn constraint(mut self, constraint: Constraint<T>) -> Self {
+        self.constraint = constraint;
+        self
+    }
+
+    /// Preset settling time `T_s` of the envelopes, seconds (default 1 s).
+    pub fn settle_time(mut self, settle_time: T) -> Self {
+        self.settle_time = settle_time;
+        self
+    }
+
+    /// Initial-width factor `k0 > 1` (default 2).
+    pub fn k0(mut self, k0: T) -> Self {
+        self.k0 = k0;
+        self
+    }
+
+    /// The map Gamma (default log).
+    pub fn gamma(mut self, gamma: Gamma) -> Self {
+        self.gamma = gamma;
+        self
+    }
+
+    /// The flexible-boundary margin `rho_e`, or `None` for no flexible
+    /// boundary. Not calling this keeps [`Constraint::default_rho_e`].
+    pub fn rho_e(mut self, rho_e: Option<T>) -> Self {
+        self.rho_e = Margin::Given(rho_e);
+        self
+    }
+
+    /// The transition `S` of the flexible boundary (default exponential).
+    pub fn transition(mut self, transition: Transition) -> Self {
+        self.transition = transition;
+        self
+    }
+
+    /// The latch of the envelopes' initial widths (default the paper's).
+    pub fn latch(mut self, latch: Latch) -> Self {
+        self.latch = latch;
+        self
+    }
+
+    /// The high-gain differentiator, or `None` for state feedback only
+    /// (default). [`HighGain::paper`] is the paper's.
+    pub fn differentiator(mut self, differentiator: Option<HighGain<T, N>>) -> Self {
+        self.differentiator = differentiator;
+        self
+    }
+
+    /// Initial derivative estimates `(z2, ..., zn)` in slots `1..N`.
+    pub fn initial_derivatives(mut self, d: Option<[T; N]>) -> Self {
+        self.initial_derivatives = d;
+        self
+    }
+
+    /// Estimate limits `|z_hat_i| <= limit_i` (default none).
+    pub fn estimate_limits(mut self, limits: Option<[T; N]>) -> Self {
+        self.estimate_limits = limits;
+        self
+    }
+
+    /// Checks every rule (the error names the parameter and the rule, and
+    /// the stage for per-stage values) and discretizes the differentiator.
+    pub fn build(&self) -> Result<Config<T, N>, ConfigError> {
+        if N == 0 {
+            return Err(ConfigError::new("order", "must be >= 1"));
+        }
+        if self.n_laws != N - 1 {
+            return Err(ConfigError::new(
+                "feedback",
+                "must have exactly order - 1 entries (one per stage)",
+            ));
+        }
+        let filler = SkewedLaw::new(Feedback::Linear { k: T::one() }, None)?;
+        let mut laws = [filler; N];
+        for (i, (slot, (h, skew))) in laws.iter_mut().zip(self.laws.iter()).take(N - 1).enumerate() {
+            *slot = SkewedLaw::new(*h, *skew).map_err(|e| e.at_stage(i))?;
+        }
+        positive(self.dt, "dt")?;
+        positive(self.settle_time, "settle_time")?;
+        positive(self.k_u, "k_u")?;
+        if !(self.k0 > T::one() && self.k0.is_finite()) {
+            return Err(ConfigError::new("k0", "must be finite and > 1"));
+        }
+        self.constraint.validate(N)?;
+        let rho_e = match self.rho_e {
+            Margin::Default => Some(self.constraint.default_rho_e()),
+            Margin::Given(r) => r,
+        };
+        if let Some(r) = rho_e {
+            self.constraint.validate_rho_e(r)?;
+        }
+        // Stage i's derivatives are needed up to order N - 2 - i (eq. (12)).
+        for (i, law) in laws.iter().take(N - 1).enumerate() {
+            if i + 2 < N && law.is_singular_at_zero() {
+                return Err(ConfigError::new(
+                    "skew",
+                    "must be Nonsingular (NSMD): a power law below 1 without NSMD has unbounded \
+                     derivatives at 0, and this stage's derivatives are needed (order >= 3)",
+                )
+                .at_stage(i));
+            }
+        }
+        if let Some(h) = &self.differentiator {
+            h.validate()?;
+        }
+        if let Some(d) = &self.initial_derivatives {
+            if d.iter().any(|v| !v.is_finite()) {
+                return Err(ConfigError::new("initial_derivatives", "must be finite"));
+            }
+        }
+        if let Some(l) = &self.estimate_limits {
+            check_estimate_limits(l)?;
+        }
+        let hgd = match &self.differentiator {
+            Some(h) => Some(h.discretize(self.dt)?),
+            None => None,
+        };
+        Ok(Config {
+            dt: self.dt,
+            laws,
+            constraint: self.constraint,
+            settle_time: self.settle_time,
+            k0: self.k0,
+            k_u: self.k_u,
+            gamma: self.gamma,
+            rho_e,
+            transition: self.transition,
+            latch: self.latch,
+            differentiator: self.differentiator,
+            hgd,
+            initial_derivatives: self.initial_derivatives,
+            estimate_limits: self.estimate_limits,
+        })
+    }
+}

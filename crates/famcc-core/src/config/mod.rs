@@ -1,0 +1,193 @@
+//! Controller configuration: a validating builder, and the defaults and
+//! rules every binding shares.
+//!
+//! [`Config::builder`] takes the values that have no default (sample period,
+//! stage laws, constraint, control gain); everything else starts at the
+//! paper's choice and can be changed. [`ConfigBuilder::build`] checks every
+//! rule once, discretizes the differentiator for `dt`, and returns a
+//! [`Config`] that cannot be changed afterwards, so a [`crate::Controller`]
+//! built from it needs no further checks.
+//!
+//! ```
+//! use famcc_core::{Config, Constraint, Feedback, HighGain, Latch};
+//! // Example 1 of the paper (LaMC, finite-time law), as the authors ran it.
+//! let cfg = Config::<f64, 2>::builder(1e-3, &[(Feedback::FiniteTime { k: 1.0, p: 0.5 }, None)],
+//!                                     Constraint::Lateral { eps: 0.1 }, 5.0)
+//!     .latch(Latch::Authors)
+//!     .differentiator(Some(HighGain::paper()))
+//!     .build()
+//!     .unwrap();
+//! assert_eq!((cfg.k0(), cfg.settle_time(), cfg.rho_e()), (2.0, 1.0, Some(0.01)));
+//! let err = Config::<f64, 2>::builder(1e-3, &[(Feedback::Linear { k: 1.0 }, None)],
+//!                                     Constraint::Lateral { eps: 0.1 }, 5.0)
+//!     .k0(0.5)
+//!     .build()
+//!     .unwrap_err();
+//! assert_eq!(err.to_string(), "k0 must be finite and > 1");
+//! ```
+
+mod builder;
+
+pub use builder::ConfigBuilder;
+
+use crate::differentiator::DiscreteHgd;
+use crate::error::ConfigError;
+use crate::{Constraint, Gamma, HighGain, Latch, Real, SkewedLaw, Transition};
+
+/// Default initial-width factor `k0` (eqs. (21)-(22); every example of the paper).
+pub const DEFAULT_K0: f64 = 2.0;
+/// Default preset settling time `T_s` of the envelopes, seconds (every
+/// example of the paper).
+pub const DEFAULT_SETTLE_TIME: f64 = 1.0;
+
+macro_rules! max_order {
+    () => {
+        8
+    };
+}
+
+/// The largest system order famcc tests and its run-time-order binding
+/// (Python) instantiates. `Controller<T, N>` compiles for any `N >= 1`; the
+/// test suite covers `1..=MAX_ORDER`.
+pub const MAX_ORDER: usize = max_order!();
+
+/// Checks an order chosen at run time against `1..=MAX_ORDER`.
+///
+/// ```
+/// use famcc_core::config::{check_order, MAX_ORDER};
+/// assert!(check_order(MAX_ORDER).is_ok());
+/// assert_eq!(check_order(0).unwrap_err().to_string(), "order must be between 1 and 8");
+/// ```
+pub fn check_order(order: usize) -> Result<(), ConfigError> {
+    if (1..=MAX_ORDER).contains(&order) {
+        Ok(())
+    } else {
+        Err(ConfigError::new(
+            "order",
+            concat!("must be between 1 and ", max_order!()),
+        ))
+    }
+}
+
+/// Checks the estimate limits `|z_hat_i| <= limit_i` (docs/design.md §3.8):
+/// every limit `> 0`, infinity allowed (no limit for that estimate).
+///
+/// ```
+/// use famcc_core::config::check_estimate_limits;
+/// assert!(check_estimate_limits(&[2.0_f64, f64::INFINITY]).is_ok());
+/// assert!(check_estimate_limits(&[2.0_f64, 0.0]).is_err());
+/// ```
+pub fn check_estimate_limits<T: Real>(limits: &[T]) -> Result<(), ConfigError> {
+    if limits.iter().any(|v| v.is_nan() || *v <= T::zero()) {
+        return Err(ConfigError::new(
+            "estimate_limits",
+            "must all be > 0 (inf allowed)",
+        ));
+    }
+    Ok(())
+}
+
+/// Everything that defines a FAMCC controller of order `N`, validated.
+///
+/// Built by [`Config::builder`]; read through its accessors. A `Config` is
+/// always valid: the only way to make one is [`ConfigBuilder::build`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config<T, const N: usize> {
+    dt: T,
+    /// Stage laws `h_m1..h_m(N-1)`; slot `N-1` is unused.
+    laws: [SkewedLaw<T>; N],
+    constraint: Constraint<T>,
+    settle_time: T,
+    k0: T,
+    k_u: T,
+    gamma: Gamma,
+    rho_e: Option<T>,
+    transition: Transition,
+    latch: Latch,
+    differentiator: Option<HighGain<T, N>>,
+    /// The differentiator discretized for `dt`.
+    hgd: Option<DiscreteHgd<T, N>>,
+    initial_derivatives: Option<[T; N]>,
+    estimate_limits: Option<[T; N]>,
+}
+
+impl<T: Real, const N: usize> Config<T, N> {
+    /// Sample period, seconds.
+    pub fn dt(&self) -> T {
+        self.dt
+    }
+
+    /// The stage laws `h_m1..h_m(N-1)`.
+    pub fn laws(&self) -> &[SkewedLaw<T>] {
+        self.laws.get(..N.saturating_sub(1)).unwrap_or(&[])
+    }
+
+    /// The last stage's law `h_m(n-1)` (None at order 1).
+    pub fn last_law(&self) -> Option<&SkewedLaw<T>> {
+        self.laws().last()
+    }
+
+    /// Constraint type and final half-widths.
+    pub fn constraint(&self) -> &Constraint<T> {
+        &self.constraint
+    }
+
+    /// Preset settling time `T_s` of the envelopes, seconds.
+    pub fn settle_time(&self) -> T {
+        self.settle_time
+    }
+
+    /// Initial-width factor `k0 > 1` (eqs. (21)-(22)).
+    pub fn k0(&self) -> T {
+        self.k0
+    }
+
+    /// Control gain `k_u > 0` (eq. (29)), in input units.
+    pub fn k_u(&self) -> T {
+        self.k_u
+    }
+
+    /// The map Gamma of eq. (29).
+    pub fn gamma(&self) -> Gamma {
+        self.gamma
+    }
+
+    /// Flexible-boundary margin `rho_e` (eq. (30)); `None`: no flexible
+    /// boundary (the controller of eq. (29)).
+    pub fn rho_e(&self) -> Option<T> {
+        self.rho_e
+    }
+
+    /// The transition `S` of the flexible boundary.
+    pub fn transition(&self) -> Transition {
+        self.transition
+    }
+
+    /// How the envelopes' initial widths are latched.
+    pub fn latch(&self) -> Latch {
+        self.latch
+    }
+
+    /// The high-gain differentiator (output feedback, eq. (34)); `None` for
+    /// state feedback only.
+    pub fn differentiator(&self) -> Option<&HighGain<T, N>> {
+        self.differentiator.as_ref()
+    }
+
+    /// The differentiator discretized for [`Config::dt`].
+    pub fn discretized(&self) -> Option<&DiscreteHgd<T, N>> {
+        self.hgd.as_ref()
+    }
+
+    /// Initial derivative estimates `(z2, ..., zn)` in slots `1..N` (slot 0
+    /// is ignored: the first sample is used); `None` means zeros.
+    pub fn initial_derivatives(&self) -> Option<&[T; N]> {
+        self.initial_derivatives.as_ref()
+    }
+
+    /// The saturation `|z_hat_i| <= limit_i` of the estimates fed to the law
+    /// (docs/design.md §3.8), if any.
+    pub fn estimate_limits(&self) -> Option<&[T; N]> {
+        self.estimate_limits.as_ref()
+    }
+}

@@ -1,0 +1,103 @@
+//! The root search of the constraint geometry: `h_v = h^{-1}` (LaMC,
+//! eq. (28)) and the intersection `x_c` of eq. (27) (OMC) are roots of
+//! strictly decreasing functions, so a bracketing search always finds the
+//! unique root and always terminates.
+
+use crate::Real;
+
+/// Iteration budget of [`decreasing_root`]'s refinement phase.
+pub const ROOT_ITERATIONS: usize = 96;
+/// Iteration budget of [`decreasing_root`]'s bracketing phase (enough to
+/// double a step from 1 past the largest finite `f64`).
+pub const BRACKET_ITERATIONS: usize = 1100;
+
+/// The root of a strictly decreasing function `f`, searched from `x0`.
+///
+/// Phase 1 brackets the root by doubling steps from `x0` (at most
+/// [`BRACKET_ITERATIONS`]); phase 2 refines with the Illinois variant of
+/// regula falsi, which falls back to bisection when it stalls (at most
+/// [`ROOT_ITERATIONS`]). It stops when the bracket is within 4 ulps of the
+/// root or `f` is exactly zero, so the result is within a few ulps of the
+/// true root (absolute `4 * epsilon` for roots below 1 in magnitude). If no
+/// sign change exists in the representable range the nearest end is
+/// returned: the search always terminates and never returns NaN for finite
+/// `f` values.
+///
+/// ```
+/// use famcc_core::constraint::decreasing_root;
+/// let r = decreasing_root(|x: f64| 2.0 - x * x * x, 0.0);
+/// assert!((r - 2.0_f64.cbrt()).abs() < 1e-15);
+/// ```
+pub fn decreasing_root<T: Real>(f: impl Fn(T) -> T, x0: T) -> T {
+    let f0 = f(x0);
+    if f0 == T::zero() || !f0.is_finite() {
+        return x0;
+    }
+    // f decreasing: f(x0) > 0 means the root lies right of x0.
+    let dir = if f0 > T::zero() { T::one() } else { -T::one() };
+    let mut step = x0.abs().max(T::one());
+    let (mut a, mut fa) = (x0, f0);
+    let (mut b, mut fb) = (x0, f0);
+    let mut bracketed = false;
+    for _ in 0..BRACKET_ITERATIONS {
+        let x = x0 + dir * step;
+        let fx = f(x);
+        if !x.is_finite() || !fx.is_finite() {
+            break;
+        }
+        if fx == T::zero() {
+            return x;
+        }
+        if (fx > T::zero()) != (f0 > T::zero()) {
+            b = x;
+            fb = fx;
+            bracketed = true;
+            break;
+        }
+        a = x;
+        fa = fx;
+        step = step * T::from_f64(2.0);
+    }
+    if !bracketed {
+        return a;
+    }
+    let four_eps = T::from_f64(4.0) * T::epsilon();
+    let mut side = 0i8;
+    for _ in 0..ROOT_ITERATIONS {
+        let width = (b - a).abs();
+        let scale = a.abs().max(b.abs()).max(T::one());
+        if width <= four_eps * scale {
+            break;
+        }
+        let mut x = (a * fb - b * fa) / (fb - fa);
+        let lo = a.min(b);
+        let hi = a.max(b);
+        if !(x > lo && x < hi) {
+            x = a + (b - a) * T::from_f64(0.5);
+        }
+        let fx = f(x);
+        if fx == T::zero() || !fx.is_finite() {
+            return x;
+        }
+        if (fx > T::zero()) == (fa > T::zero()) {
+            a = x;
+            fa = fx;
+            if side == -1 {
+                fb = fb * T::from_f64(0.5);
+            }
+            side = -1;
+        } else {
+            b = x;
+            fb = fx;
+            if side == 1 {
+                fa = fa * T::from_f64(0.5);
+            }
+            side = 1;
+        }
+    }
+    if fa.abs() < fb.abs() {
+        a
+    } else {
+        b
+    }
+}

@@ -1,0 +1,63 @@
+//! What the controller did at its last step.
+
+use crate::Real;
+
+/// What the controller did at its last step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Diagnostics<T, const N: usize> {
+    /// Time of the last step's sample, seconds.
+    pub t: T,
+    /// The constraint variable used for the output (flexible `xi~` of
+    /// eq. (31) when the flexible boundary is on), after clamping.
+    pub xi: T,
+    /// The nominal constraint variable `xi` (eq. (28)), before clamping.
+    pub xi_nominal: T,
+    /// The manifold value `s = s_n`.
+    pub s: T,
+    /// `s_1..s_n` (eq. (11)).
+    pub stages: [T; N],
+    /// `s_{n-1}`.
+    pub s_prev: T,
+    /// `d/dt s_{n-1}`.
+    pub ds_prev: T,
+    /// Flexible upper bounds `(x~_U, y~_U)` (lower ones are their negatives).
+    pub bounds: (T, T),
+    /// Nominal upper bounds `(x_U, y_U)`.
+    pub nominal_bounds: (T, T),
+    /// The estimate the output was computed from (after optional saturation).
+    pub z_hat: [T; N],
+    /// True when the flexible boundary was expanded.
+    pub expanded: bool,
+    /// The expansion factor `x~_U / x_U = y~_U / y_U >= 1` of the flexible
+    /// boundary (eq. (30)); exactly 1 while the bounds are nominal.
+    pub expansion: T,
+    /// `v_{k-1} - applied` when the caller passed the applied input.
+    pub saturation_gap: Option<T>,
+    /// Number of steps at which `|xi|` had to be clamped below 1.
+    pub clamp_count: u64,
+    /// The output `v`.
+    pub v: T,
+}
+
+impl<T: Real, const N: usize> Default for Diagnostics<T, N> {
+    fn default() -> Self {
+        let z = T::zero();
+        Self {
+            t: z,
+            xi: z,
+            xi_nominal: z,
+            s: z,
+            stages: [z; N],
+            s_prev: z,
+            ds_prev: z,
+            bounds: (z, z),
+            nominal_bounds: (z, z),
+            z_hat: [z; N],
+            expanded: false,
+            expansion: T::one(),
+            saturation_gap: None,
+            clamp_count: 0,
+            v: z,
+        }
+    }
+}

@@ -1,0 +1,357 @@
+//! The FAMCC controller: a real-time discrete controller (docs/design.md §3).
+//!
+//! Each [`Controller::step`] takes one sample of the output error
+//! `e = y - y_d` and returns the control `v = -k_u Gamma(xi~)` (eqs. (35)
+//! uOF, (32) WuT) to hold until the next sample. Inside a step:
+//! 1. on the first step the estimate is `(e0, 0, ..., 0)` (or the configured
+//!    derivative estimates) and the envelopes latch their initial widths;
+//! 2. the output is computed from the current estimate `Zhat_k` (built from
+//!    samples up to `k-1`): manifold (eq. (11), IS), constraint variable
+//!    (eq. (28), xi), flexible boundary (eqs. (30)-(31)), control (eq. (29));
+//! 3. the estimate advances, `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` (eq. (34)
+//!    discretized at construction).
+//!
+//! A step is transactional: on an error the state is unchanged, with one
+//! exception: [`StepError::Overflow`] after the first step means the sample
+//! was valid but the law overflowed on it (an outlier drove the estimate out
+//! of range); the estimate and the clock then advance, so the controller
+//! recovers as the estimate decays, and the caller holds its last output.
+//!
+//! ```
+//! use famcc_core::{Config, Constraint, Controller, Feedback, HighGain};
+//! // Example 1 of the paper: LaMC, finite-time law, eps_x = 0.1, k_u = 5.
+//! let cfg = Config::<f64, 2>::builder(
+//!     1e-3, &[(Feedback::FiniteTime { k: 1.0, p: 0.5 }, None)],
+//!     Constraint::Lateral { eps: 0.1 }, 5.0)
+//!     .differentiator(Some(HighGain::paper()))
+//!     .build()
+//!     .unwrap();
+//! let mut ctrl = Controller::new(cfg);
+//! let v = ctrl.step(-1.0).unwrap();
+//! assert!(v > 0.0);                       // error below the reference: push up
+//! assert!(ctrl.diagnostics().xi.abs() < 1.0);
+//! ```
+
+mod diagnostics;
+mod snapshot;
+
+pub use diagnostics::Diagnostics;
+pub use snapshot::{Snapshot, SNAPSHOT_FIELDS};
+
+use crate::constraint::Envelopes;
+use crate::error::{ConfigError, StepError};
+use crate::{differentiator, manifold, Config, Real};
+
+/// The controller's mutable state (everything `reset` clears).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct State<T, const N: usize> {
+    started: bool,
+    /// Time of the next sample = `t_base + k * dt`.
+    t_base: T,
+    k: u64,
+    zhat: [T; N],
+    envelopes: Envelopes<T>,
+    diag: Diagnostics<T, N>,
+}
+
+/// What a step measured: the output error (output feedback, eq. (35)) or
+/// the whole error vector (state feedback, eq. (32)).
+#[derive(Clone, Copy)]
+enum Measured<T, const N: usize> {
+    Error(T),
+    State([T; N]),
+}
+
+/// The FAMCC controller of order `N` (the system order).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Controller<T, const N: usize> {
+    config: Config<T, N>,
+    state: State<T, N>,
+}
+
+impl<T: Real, const N: usize> Controller<T, N> {
+    /// A controller in its state before the first step. The configuration is
+    /// valid by construction ([`crate::ConfigBuilder::build`]).
+    pub fn new(config: Config<T, N>) -> Self {
+        Self {
+            state: Self::initial_state(&config),
+            config,
+        }
+    }
+
+    fn initial_state(config: &Config<T, N>) -> State<T, N> {
+        State {
+            started: false,
+            t_base: T::zero(),
+            k: 0,
+            zhat: [T::zero(); N],
+            envelopes: config.constraint().envelopes(config.settle_time()),
+            diag: Diagnostics::default(),
+        }
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &Config<T, N> {
+        &self.config
+    }
+
+    /// What the last step did. The manifold values (`s`, `stages`,
+    /// `s_prev`, `ds_prev`) are evaluated here from the estimate the step
+    /// used, so `step()` does not pay for values only a reader needs.
+    pub fn diagnostics(&self) -> Diagnostics<T, N> {
+        let mut d = self.state.diag;
+        if self.state.started {
+            let m = manifold::evaluate(&d.z_hat, self.config.laws());
+            d.s = m.s();
+            d.stages = m.stages;
+            d.s_prev = m.s_prev;
+            d.ds_prev = m.ds_prev;
+        }
+        d
+    }
+
+    /// The time of the next sample, seconds.
+    pub fn time(&self) -> T {
+        self.state.t_base + T::from_u64(self.state.k) * self.config.dt()
+    }
+
+    /// The current estimate `Zhat` (the one the next step will use).
+    pub fn estimate(&self) -> &[T; N] {
+        &self.state.zhat
+    }
+
+    /// The state as plain values; [`Controller::restore`] continues from it.
+    pub fn snapshot(&self) -> Snapshot<T, N> {
+        let st = &self.state;
+        Snapshot {
+            started: st.started,
+            t_base: st.t_base,
+            k: st.k,
+            zhat: st.zhat,
+            rho0_x: st.envelopes.x.rho0,
+            rho0_y: st.envelopes.y.rho0,
+            clamp_count: st.diag.clamp_count,
+            last_v: st.diag.v,
+        }
+    }
+
+    /// Continues from a [`Controller::snapshot`]. Rejects non-finite values,
+    /// a negative time and widths below the final ones; on error nothing
+    /// changes. The diagnostics keep only the clamp count and the last output.
+    pub fn restore(&mut self, snap: &Snapshot<T, N>) -> Result<(), ConfigError> {
+        snap.check(self.config.constraint().eps())?;
+        let mut st = Self::initial_state(&self.config);
+        st.started = snap.started;
+        st.t_base = snap.t_base;
+        st.k = snap.k;
+        st.zhat = snap.zhat;
+        st.envelopes.x.rho0 = snap.rho0_x;
+        st.envelopes.y.rho0 = snap.rho0_y;
+        st.diag.clamp_count = snap.clamp_count;
+        st.diag.v = snap.last_v;
+        self.state = st;
+        Ok(())
+    }
+
+    /// Back to the state before the first step (configuration kept).
+    pub fn reset(&mut self) {
+        self.state = Self::initial_state(&self.config);
+    }
+
+    /// One output-feedback step at the nominal `dt` (eq. (35)).
+    #[inline]
+    pub fn step(&mut self, e: T) -> Result<T, StepError> {
+        self.control_then_advance(Measured::Error(e), None, None)
+    }
+
+    /// [`Controller::step`], telling the controller the input the actuator
+    /// really applied at the previous sample (diagnostics report the gap).
+    #[inline]
+    pub fn step_applied(&mut self, e: T, applied: Option<T>) -> Result<T, StepError> {
+        self.control_then_advance(Measured::Error(e), None, applied)
+    }
+
+    /// One step with a one-off sample period `dt` (the differentiator is
+    /// rediscretized for it; the nominal discretization is kept).
+    pub fn step_dt(&mut self, e: T, dt: T, applied: Option<T>) -> Result<T, StepError> {
+        self.control_then_advance(Measured::Error(e), Some(dt), applied)
+    }
+
+    /// One state-feedback step with a measured error vector `Z = (z1..zn)`
+    /// (paper Theorems 1-2). A configured differentiator keeps tracking `z1`.
+    pub fn step_state(&mut self, z: [T; N]) -> Result<T, StepError> {
+        self.control_then_advance(Measured::State(z), None, None)
+    }
+
+    /// [`Controller::step_state`] with the applied input of the previous sample.
+    pub fn step_state_applied(&mut self, z: [T; N], applied: Option<T>) -> Result<T, StepError> {
+        self.control_then_advance(Measured::State(z), None, applied)
+    }
+
+    /// Every step: computes the control from the current estimate (or the
+    /// measured state), then advances the estimate and the clock by `dt`
+    /// (`None`: the nominal period) and commits, or changes nothing on an
+    /// error (except a law overflow after the first step, see the module docs).
+    #[inline(always)]
+    fn control_then_advance(
+        &mut self,
+        measured: Measured<T, N>,
+        one_off_dt: Option<T>,
+        applied: Option<T>,
+    ) -> Result<T, StepError> {
+        let c = &self.config;
+        let finite = match &measured {
+            Measured::Error(e) => e.is_finite(),
+            Measured::State(z) => z.iter().all(|v| v.is_finite()),
+        };
+        if !finite {
+            return Err(StepError::NonFiniteInput);
+        }
+        let dt = match one_off_dt {
+            Some(dt) if !(dt.is_finite() && dt > T::zero()) => return Err(StepError::InvalidDt),
+            Some(dt) => dt,
+            None => c.dt(),
+        };
+        // The vector the law uses, and the estimate the next step will use.
+        let (z, next) = match measured {
+            Measured::Error(e) => {
+                let one_off;
+                let hgd = match (one_off_dt, c.differentiator()) {
+                    (Some(dt), Some(h)) => {
+                        one_off = h.discretize(dt).map_err(|_| StepError::InvalidDt)?;
+                        Some(&one_off)
+                    }
+                    _ => c.discretized(),
+                };
+                match hgd {
+                    Some(d) => {
+                        let z = self.current_estimate(e);
+                        (self.limited(z), d.advance(&z, e))
+                    }
+                    // Order 1 needs no differentiator: Z = (e) is measured.
+                    None if !differentiator::needed_at(N) => ([e; N], [e; N]),
+                    None => return Err(StepError::NoDifferentiator),
+                }
+            }
+            Measured::State(z) => {
+                let e = z.first().copied().unwrap_or_else(T::zero);
+                let zhat = if self.state.started { self.state.zhat } else { z };
+                let next = match c.discretized() {
+                    Some(d) => d.advance(&zhat, e),
+                    None => z,
+                };
+                (z, next)
+            }
+        };
+        if applied.is_some_and(|a| !a.is_finite()) {
+            return Err(StepError::NonFiniteApplied);
+        }
+        if next.iter().any(|v| !v.is_finite()) {
+            return Err(StepError::Overflow);
+        }
+        let t = self.time();
+        let t_next = t + dt;
+        if !t_next.is_finite() {
+            return Err(StepError::InvalidDt);
+        }
+
+        // The law (eqs. (11), (28)-(32)), with the envelopes latched from
+        // this very state at the first step.
+        let first = !self.state.started;
+        let constraint = c.constraint();
+        let m = if constraint.needs_s(first) {
+            manifold::evaluate(&z, c.laws())
+        } else {
+            manifold::evaluate_prev(&z, c.laws())
+        };
+        // A failed first step leaves the envelopes as they were.
+        let unlatched = if first { Some(self.state.envelopes) } else { None };
+        let eval = constraint.evaluate(
+            c.last_law(),
+            &m,
+            &mut self.state.envelopes,
+            first.then(|| (c.latch(), c.k0())),
+            t,
+            c.rho_e().map(|rho_e| (rho_e, c.transition())),
+        );
+        let v = -c.k_u() * c.gamma().eval(eval.xi);
+        let env = &self.state.envelopes;
+        let latched = !first || (env.x.rho0.is_finite() && env.y.rho0.is_finite());
+        if !(latched && v.is_finite() && eval.xi.is_finite()) {
+            match unlatched {
+                Some(envelopes) => self.state.envelopes = envelopes,
+                None => {
+                    // The sample is valid: let the estimate and the clock move
+                    // on so that the controller recovers once the estimate is
+                    // back in range (one outlier must not stop it for good).
+                    self.state.zhat = next;
+                    self.advance_clock(t_next, dt);
+                }
+            }
+            return Err(StepError::Overflow);
+        }
+
+        let (x_u, y_u) = eval.nominal;
+        let factor = eval.expansion;
+        let st = &mut self.state;
+        let (previous_v, previous_clamps) = (st.diag.v, st.diag.clamp_count);
+        st.diag = Diagnostics {
+            t,
+            xi: eval.xi,
+            xi_nominal: eval.xi_nominal,
+            bounds: (factor * x_u, factor * y_u),
+            nominal_bounds: (x_u, y_u),
+            z_hat: z,
+            expanded: factor > T::one(),
+            expansion: factor,
+            saturation_gap: applied.map(|a| previous_v - a),
+            clamp_count: previous_clamps + u64::from(eval.clamped),
+            v,
+            // The manifold values are filled in by `diagnostics()`.
+            ..Diagnostics::default()
+        };
+        st.started = true;
+        st.zhat = next;
+        self.advance_clock(t_next, dt);
+        Ok(v)
+    }
+
+    /// The estimate for this step: the stored one, or the initial one.
+    #[inline]
+    fn current_estimate(&self, e: T) -> [T; N] {
+        if self.state.started {
+            return self.state.zhat;
+        }
+        let mut z = self
+            .config
+            .initial_derivatives()
+            .copied()
+            .unwrap_or([T::zero(); N]);
+        if let Some(z1) = z.first_mut() {
+            *z1 = e;
+        }
+        z
+    }
+
+    /// The estimate after the optional saturation `|z_hat_i| <= limit_i`.
+    #[inline]
+    fn limited(&self, mut z: [T; N]) -> [T; N] {
+        if let Some(limits) = self.config.estimate_limits() {
+            z.iter_mut()
+                .zip(limits.iter())
+                .for_each(|(z, l)| *z = z.max(-*l).min(*l));
+        }
+        z
+    }
+
+    #[inline]
+    fn advance_clock(&mut self, t_next: T, dt: T) {
+        let st = &mut self.state;
+        if dt == self.config.dt() {
+            st.k += 1;
+        } else {
+            st.t_base = t_next;
+            st.k = 0;
+        }
+    }
+}

@@ -1,0 +1,288 @@
+//! Conversions between the C types and famcc-core's: configurations (with
+//! famcc-core's defaults), enumeration values, diagnostics, errors.
+
+use core::ffi::c_char;
+use core::ptr;
+
+use crate::types::*;
+use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
+use famcc_core::{
+    Config, ConfigError, Constraint, Diagnostics, Discretization, Feedback, Gamma, HighGain, Latch, Real,
+    Skew, SkewKind, StepError, Transition,
+};
+
+pub(crate) fn status_of(e: StepError) -> FamccStatus {
+    match e {
+        StepError::NonFiniteInput => FamccStatus::NonFiniteInput,
+        StepError::NonFiniteApplied => FamccStatus::NonFiniteApplied,
+        StepError::InvalidDt => FamccStatus::InvalidDt,
+        StepError::NoDifferentiator => FamccStatus::NoDifferentiator,
+        StepError::Overflow => FamccStatus::Overflow,
+    }
+}
+
+fn copy_str(dst: &mut [c_char], s: &str) {
+    let n = s.len().min(dst.len().saturating_sub(1));
+    for (d, b) in dst.iter_mut().zip(s.as_bytes().iter().take(n)) {
+        *d = *b as c_char;
+    }
+    if let Some(end) = dst.get_mut(n) {
+        *end = 0;
+    }
+}
+
+/// Writes `e` to `out` when `out` is not NULL.
+pub(crate) unsafe fn report(out: *mut FamccError, e: &ConfigError) {
+    if out.is_null() {
+        return;
+    }
+    let mut r = FamccError {
+        stage: e.stage.map_or(-1, |s| s as i32),
+        parameter: [0; 32],
+        rule: [0; 160],
+    };
+    copy_str(&mut r.parameter, e.parameter);
+    copy_str(&mut r.rule, e.rule);
+    ptr::write_unaligned(out, r);
+}
+
+/// A table of `FAMCC_*` values and the core's enumeration values.
+pub(crate) type Table<E> = [(u32, E)];
+
+pub(crate) const TRANSITIONS: [(u32, Transition); 4] = [
+    (FamccTransition::Exponential as u32, Transition::Exponential),
+    (FamccTransition::Cubic as u32, Transition::Cubic),
+    (FamccTransition::Quintic as u32, Transition::Quintic),
+    (FamccTransition::Sine as u32, Transition::Sine),
+];
+pub(crate) const GAMMAS: [(u32, Gamma); 2] = [
+    (FamccGamma::Log as u32, Gamma::Log),
+    (FamccGamma::Rational as u32, Gamma::Rational),
+];
+pub(crate) const LATCHES: [(u32, Latch); 2] = [
+    (FamccLatch::Paper as u32, Latch::Paper),
+    (FamccLatch::Authors as u32, Latch::Authors),
+];
+pub(crate) const DISCRETIZATIONS: [(u32, Discretization); 3] = [
+    (FamccDiscretization::Exact as u32, Discretization::Exact),
+    (FamccDiscretization::Euler as u32, Discretization::Euler),
+    (FamccDiscretization::Tustin as u32, Discretization::Tustin),
+];
+
+/// The core's value of the C value `v` (errors name `name` and the rule).
+fn from_c<E: Copy>(
+    table: &Table<E>,
+    v: u32,
+    name: &'static str,
+    rule: &'static str,
+) -> Result<E, ConfigError> {
+    table
+        .iter()
+        .find(|(c, _)| *c == v)
+        .map(|(_, e)| *e)
+        .ok_or(ConfigError::new(name, rule))
+}
+
+/// The C value of the core's value `e`.
+pub(crate) fn to_c<E: Copy + PartialEq>(table: &Table<E>, e: E) -> u32 {
+    table.iter().find(|(_, x)| *x == e).map_or(u32::MAX, |(c, _)| *c)
+}
+
+fn transition(v: u32, name: &'static str) -> Result<Transition, ConfigError> {
+    from_c(&TRANSITIONS, v, name, "must be a FAMCC_TRANSITION_* value")
+}
+
+fn feedback<T: Real>(f: &FamccFeedback<T>) -> Result<Feedback<T>, ConfigError> {
+    // SAFETY (all arms): every union member is plain floats, so any
+    // initialised bytes are a valid value of the member read.
+    let p = &f.params;
+    Ok(unsafe {
+        match f.kind {
+            0 => Feedback::Linear { k: p.linear.k },
+            1 => Feedback::FiniteTime {
+                k: p.finite_time.k,
+                p: p.finite_time.p,
+            },
+            2 => Feedback::FixedTime {
+                alpha: p.fixed_time.alpha,
+                p: p.fixed_time.p,
+                beta: p.fixed_time.beta,
+                q: p.fixed_time.q,
+            },
+            3 => Feedback::VariableExponent {
+                k: p.variable_exponent.k,
+                r_b: p.variable_exponent.r_b,
+                r_1: p.variable_exponent.r_1,
+                r_t: p.variable_exponent.r_t,
+            },
+            4 => Feedback::MoulayDiscontinuous {
+                beta: p.moulay.beta,
+                lambda: p.moulay.lambda,
+                mu: p.moulay.mu,
+            },
+            _ => {
+                return Err(ConfigError::new(
+                    "feedback.kind",
+                    "must be a FAMCC_FEEDBACK_KIND_* value",
+                ))
+            }
+        }
+    })
+}
+
+fn skew<T: Real>(s: &FamccSkew<T>) -> Result<Option<Skew<T>>, ConfigError> {
+    let kind = match s.kind {
+        0 => return Ok(None),
+        1 => SkewKind::Smooth,
+        2 => SkewKind::Nonsingular { k_pp: s.k_pp },
+        _ => return Err(ConfigError::new("skew.kind", "must be a FAMCC_SKEW_KIND_* value")),
+    };
+    Ok(Some(Skew {
+        eps_s: s.eps_s,
+        eps_z: s.eps_z,
+        kind,
+        transition: transition(s.transition, "skew.transition")?,
+    }))
+}
+
+/// The famcc-core configuration of order `N` described by `c`.
+pub(crate) fn to_config<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<Config<T, N>, ConfigError> {
+    let placeholder = (Feedback::Linear { k: T::one() }, None);
+    let mut laws = [placeholder; FAMCC_MAX_STAGES];
+    for (i, (slot, st)) in laws
+        .iter_mut()
+        .zip(c.stages.iter())
+        .take(N.saturating_sub(1))
+        .enumerate()
+    {
+        *slot = (
+            feedback(&st.feedback).map_err(|e| e.at_stage(i))?,
+            skew(&st.skew).map_err(|e| e.at_stage(i))?,
+        );
+    }
+    let used = laws.get(..N.saturating_sub(1)).unwrap_or(&[]);
+    let constraint = match c.constraint.kind {
+        0 => Constraint::Longitudinal {
+            eps: c.constraint.eps_y,
+        },
+        1 => Constraint::Lateral {
+            eps: c.constraint.eps_x,
+        },
+        2 => Constraint::Oblique {
+            eps_x: c.constraint.eps_x,
+            eps_y: c.constraint.eps_y,
+        },
+        _ => {
+            return Err(ConfigError::new(
+                "constraint.kind",
+                "must be a FAMCC_CONSTRAINT_KIND_* value",
+            ))
+        }
+    };
+    let first_n = |src: &[T; FAMCC_MAX_ORDER]| {
+        let mut a = [T::zero(); N];
+        a.iter_mut().zip(src.iter()).for_each(|(d, s)| *d = *s);
+        a
+    };
+    let d = &c.differentiator;
+    let differentiator = if d.enabled != 0 {
+        let disc = from_c(
+            &DISCRETIZATIONS,
+            d.discretization,
+            "discretization",
+            "must be a FAMCC_DISCRETIZATION_* value",
+        )?;
+        Some(HighGain::new(d.mu, first_n(&d.a), disc))
+    } else {
+        None
+    };
+    let mut b = Config::<T, N>::builder(c.dt, used, constraint, c.k_u)
+        .settle_time(c.settle_time)
+        .k0(c.k0)
+        .gamma(from_c(
+            &GAMMAS,
+            c.gamma,
+            "gamma",
+            "must be a FAMCC_GAMMA_* value",
+        )?)
+        .transition(transition(c.transition, "transition")?)
+        .latch(from_c(
+            &LATCHES,
+            c.latch,
+            "latch",
+            "must be a FAMCC_LATCH_* value",
+        )?)
+        .differentiator(differentiator)
+        .initial_derivatives((c.has_initial_derivatives != 0).then(|| first_n(&c.initial_derivatives)))
+        .estimate_limits((c.has_estimate_limits != 0).then(|| first_n(&c.estimate_limits)));
+    b = match c.flexible {
+        x if x == FamccFlexible::Off as u32 => b.rho_e(None),
+        x if x == FamccFlexible::On as u32 => b.rho_e(Some(c.rho_e)),
+        x if x == FamccFlexible::Auto as u32 => b,
+        _ => return Err(ConfigError::new("flexible", "must be a FAMCC_FLEXIBLE_* value")),
+    };
+    b.build()
+}
+
+/// famcc-core's defaults as a C configuration: `k0`, `T_s`, Gamma, the
+/// transition and the latch are the core's; flexible boundaries with the
+/// core's margin (`FAMCC_FLEXIBLE_AUTO`); no differentiator. What has no
+/// default (`dt`, `k_u`, the constraint's widths, the stage laws) is zero,
+/// which the validation rejects until it is set.
+pub(crate) fn defaults<T: Real>() -> FamccConfig<T> {
+    let z = T::zero();
+    let stage = FamccStage {
+        feedback: FamccFeedback {
+            kind: FamccFeedbackKind::Linear as u32,
+            params: FamccFeedbackParams {
+                fixed_time: FamccFixedTime::default(),
+            },
+        },
+        skew: FamccSkew::default(),
+    };
+    FamccConfig {
+        dt: z,
+        settle_time: T::from_f64(DEFAULT_SETTLE_TIME),
+        k0: T::from_f64(DEFAULT_K0),
+        k_u: z,
+        constraint: FamccConstraint::default(),
+        gamma: to_c(&GAMMAS, Gamma::default()),
+        flexible: FamccFlexible::Auto as u32,
+        rho_e: z,
+        transition: to_c(&TRANSITIONS, Transition::default()),
+        latch: to_c(&LATCHES, Latch::default()),
+        stages: [stage; FAMCC_MAX_STAGES],
+        differentiator: FamccDifferentiator::default(),
+        has_initial_derivatives: 0,
+        initial_derivatives: [z; FAMCC_MAX_ORDER],
+        has_estimate_limits: 0,
+        estimate_limits: [z; FAMCC_MAX_ORDER],
+    }
+}
+
+pub(crate) fn diag_to_c<T: Real, const N: usize>(d: &Diagnostics<T, N>) -> FamccDiagnostics<T> {
+    let pad = |src: &[T; N]| {
+        let mut a = [T::zero(); FAMCC_MAX_ORDER];
+        a.iter_mut().zip(src.iter()).for_each(|(d, s)| *d = *s);
+        a
+    };
+    FamccDiagnostics {
+        order: N as u32,
+        expanded: u32::from(d.expanded),
+        t: d.t,
+        xi: d.xi,
+        xi_nominal: d.xi_nominal,
+        expansion: d.expansion,
+        s: d.s,
+        stages: pad(&d.stages),
+        s_prev: d.s_prev,
+        ds_prev: d.ds_prev,
+        bounds: [d.bounds.0, d.bounds.1],
+        nominal_bounds: [d.nominal_bounds.0, d.nominal_bounds.1],
+        z_hat: pad(&d.z_hat),
+        has_saturation_gap: u32::from(d.saturation_gap.is_some()),
+        saturation_gap: d.saturation_gap.unwrap_or_else(T::zero),
+        clamp_count: d.clamp_count,
+        v: d.v,
+    }
+}

@@ -1,0 +1,148 @@
+//! Caller-provided storage: the tagged slot a controller lives in, and the
+//! checked access every C function goes through.
+
+use core::mem::{align_of, size_of};
+use core::ptr;
+
+use crate::convert::{diag_to_c, report, status_of, to_config};
+use crate::types::*;
+use famcc_core::{Controller, Real};
+
+/// What the storage holds: a tag (which controller type, initialised or not)
+/// and the controller.
+#[repr(C)]
+struct Slot<T, const N: usize> {
+    magic: u64,
+    ctrl: Controller<T, N>,
+}
+
+const fn magic(order: u64, bits: u64) -> u64 {
+    // "FAMCC" + order + float width.
+    0x4641_4d43_4300_0000 | (order << 8) | bits
+}
+
+pub(crate) const MAGIC_O2_F32: u64 = magic(2, 32);
+pub(crate) const MAGIC_O2_F64: u64 = magic(2, 64);
+pub(crate) const MAGIC_O3_F32: u64 = magic(3, 32);
+pub(crate) const MAGIC_O3_F64: u64 = magic(3, 64);
+
+const fn fits<S, T, const N: usize>() -> bool {
+    size_of::<Slot<T, N>>() <= size_of::<S>() && align_of::<Slot<T, N>>() <= align_of::<S>()
+}
+
+// The storage types must hold their controllers on every target.
+const _: () = assert!(fits::<FamccO2F32, f32, 2>());
+const _: () = assert!(fits::<FamccO2F64, f64, 2>());
+const _: () = assert!(fits::<FamccO3F32, f32, 3>());
+const _: () = assert!(fits::<FamccO3F64, f64, 3>());
+
+/// Checks that `storage` is non-NULL, aligned and holds a controller tagged
+/// `tag`; returns it as a `Slot` pointer.
+unsafe fn checked<S, T, const N: usize>(
+    storage: *const S,
+    tag: u64,
+) -> Result<*const Slot<T, N>, FamccStatus> {
+    if storage.is_null() {
+        return Err(FamccStatus::NullPointer);
+    }
+    if (storage as usize) % align_of::<S>() != 0 {
+        return Err(FamccStatus::Misaligned);
+    }
+    let s = storage.cast::<Slot<T, N>>();
+    if ptr::read(ptr::addr_of!((*s).magic)) != tag {
+        return Err(FamccStatus::NotInitialized);
+    }
+    Ok(s)
+}
+
+/// The controller in `storage`, for mutation.
+unsafe fn slot_mut<'a, S, T, const N: usize>(
+    storage: *mut S,
+    tag: u64,
+) -> Result<&'a mut Slot<T, N>, FamccStatus> {
+    checked::<S, T, N>(storage, tag).map(|s| &mut *s.cast_mut())
+}
+
+/// The controller in `storage`, read only.
+unsafe fn slot_ref<'a, S, T, const N: usize>(
+    storage: *const S,
+    tag: u64,
+) -> Result<&'a Slot<T, N>, FamccStatus> {
+    checked::<S, T, N>(storage, tag).map(|s| &*s)
+}
+
+pub(crate) unsafe fn init<S, T: Real, const N: usize>(
+    storage: *mut S,
+    config: *const FamccConfig<T>,
+    error: *mut FamccError,
+    tag: u64,
+) -> FamccStatus {
+    if storage.is_null() || config.is_null() {
+        return FamccStatus::NullPointer;
+    }
+    if (storage as usize) % align_of::<S>() != 0 {
+        return FamccStatus::Misaligned;
+    }
+    let s = storage.cast::<Slot<T, N>>();
+    // Until a controller is in place the storage reads as uninitialised.
+    ptr::write(ptr::addr_of_mut!((*s).magic), 0);
+    let c = ptr::read_unaligned(config);
+    match to_config::<T, N>(&c).map(Controller::new) {
+        Ok(ctrl) => {
+            ptr::write(s, Slot { magic: tag, ctrl });
+            FamccStatus::Ok
+        }
+        Err(e) => {
+            report(error, &e);
+            FamccStatus::InvalidConfig
+        }
+    }
+}
+
+pub(crate) unsafe fn step<S, T: Real, const N: usize>(
+    storage: *mut S,
+    tag: u64,
+    e: T,
+    applied: Option<T>,
+    v: *mut T,
+) -> FamccStatus {
+    if v.is_null() {
+        return FamccStatus::NullPointer;
+    }
+    match slot_mut::<S, T, N>(storage, tag) {
+        Ok(s) => match s.ctrl.step_applied(e, applied) {
+            Ok(out) => {
+                ptr::write_unaligned(v, out);
+                FamccStatus::Ok
+            }
+            Err(err) => status_of(err),
+        },
+        Err(st) => st,
+    }
+}
+
+pub(crate) unsafe fn reset<S, T: Real, const N: usize>(storage: *mut S, tag: u64) -> FamccStatus {
+    match slot_mut::<S, T, N>(storage, tag) {
+        Ok(s) => {
+            s.ctrl.reset();
+            FamccStatus::Ok
+        }
+        Err(st) => st,
+    }
+}
+pub(crate) unsafe fn diagnostics<S, T: Real, const N: usize>(
+    storage: *const S,
+    tag: u64,
+    out: *mut FamccDiagnostics<T>,
+) -> FamccStatus {
+    if out.is_null() {
+        return FamccStatus::NullPointer;
+    }
+    match slot_ref::<S, T, N>(storage, tag) {
+        Ok(s) => {
+            ptr::write_unaligned(out, diag_to_c(&s.ctrl.diagnostics()));
+            FamccStatus::Ok
+        }
+        Err(st) => st,
+    }
+}

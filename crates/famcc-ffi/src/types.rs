@@ -1,0 +1,411 @@
+//! The C-facing types: status codes, enumeration values, the configuration
+//! and diagnostics structs, and the opaque storage of each controller type.
+//! cbindgen writes `include/famcc.h` from them.
+
+use core::ffi::c_char;
+
+/// The largest system order this ABI supports (arrays below are sized by it).
+pub const FAMCC_MAX_ORDER: usize = 3;
+/// The largest number of manifold stages (`order - 1`).
+pub const FAMCC_MAX_STAGES: usize = 2;
+
+/// Result of every call. `FAMCC_STATUS_OK` is 0; errors are positive.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccStatus {
+    /// Success.
+    Ok = 0,
+    /// A required pointer argument was NULL.
+    NullPointer = 1,
+    /// The storage is not aligned to `*_align()` bytes.
+    Misaligned = 2,
+    /// The storage does not hold an initialised controller of this type.
+    NotInitialized = 3,
+    /// The configuration was rejected (details in `FamccError`); the storage
+    /// is left uninitialised.
+    InvalidConfig = 4,
+    /// The measurement was NaN or infinite; the state is unchanged.
+    NonFiniteInput = 5,
+    /// The applied input was NaN or infinite; the state is unchanged.
+    NonFiniteApplied = 6,
+    /// A sample period was not finite and > 0.
+    InvalidDt = 7,
+    /// `step` at order >= 2 needs a differentiator (`differentiator.enabled`).
+    NoDifferentiator = 8,
+    /// An internal value overflowed (input far too large); state unchanged.
+    Overflow = 9,
+}
+
+/// Feedback law kinds (`FamccFeedback.kind`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccFeedbackKind {
+    /// `h(s) = -k s`; parameters `linear`.
+    Linear = 0,
+    /// `h(s) = -k |s|^p sign(s)`, `0 < p < 1`; parameters `finite_time`.
+    FiniteTime = 1,
+    /// `-alpha |s|^p sign(s) - beta |s|^q sign(s)`; parameters `fixed_time`.
+    FixedTime = 2,
+    /// The paper's variable-exponent law; parameters `variable_exponent`.
+    VariableExponent = 3,
+    /// Moulay's discontinuous law (comparison only); parameters `moulay`.
+    MoulayDiscontinuous = 4,
+}
+
+/// Skew kinds (`FamccSkew.kind`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccSkewKind {
+    /// No skew: `h_m = h_p`.
+    None = 0,
+    /// SSMD (smooth skewed manifold).
+    Smooth = 1,
+    /// NSMD (nonsingular skewed manifold), uses `k_pp`.
+    Nonsingular = 2,
+}
+
+/// Constraint kinds (`FamccConstraint.kind`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccConstraintKind {
+    /// LoMC: uses `eps_y`.
+    Longitudinal = 0,
+    /// LaMC: uses `eps_x`.
+    Lateral = 1,
+    /// OMC: uses `eps_x` and `eps_y`.
+    Oblique = 2,
+}
+
+/// The map Gamma of the control law (`FamccConfig.gamma`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccGamma {
+    /// `ln((1 + xi)/(1 - xi))`.
+    Log = 0,
+    /// `xi / ((1 + xi)(1 - xi))`.
+    Rational = 1,
+}
+
+/// Double-ended transitions (`FamccConfig.transition`, `FamccSkew.transition`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccTransition {
+    /// The paper's C-infinity transition.
+    Exponential = 0,
+    /// `3z^2 - 2z^3`.
+    Cubic = 1,
+    /// `10z^3 - 15z^4 + 6z^5`.
+    Quintic = 2,
+    /// `sin^2(pi z / 2)`.
+    Sine = 3,
+}
+
+/// How the envelopes' initial widths are latched (`FamccConfig.latch`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccLatch {
+    /// The paper: `rho0 = k0 max(|s0|, eps)`.
+    Paper = 0,
+    /// The authors' code: `rho0 = max(k0 |s0|, eps)`.
+    Authors = 1,
+}
+
+/// Differentiator discretizations (`FamccDifferentiator.discretization`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccDiscretization {
+    /// Zero-order hold (matrix exponential): stable for every dt.
+    Exact = 0,
+    /// Forward Euler (comparison only).
+    Euler = 1,
+    /// Tustin (bilinear).
+    Tustin = 2,
+}
+
+/// Whether and how the flexible boundaries are on (`FamccConfig.flexible`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccFlexible {
+    /// No flexible boundaries (the controller of eq. (29)).
+    Off = 0,
+    /// Flexible boundaries with the margin `rho_e`.
+    On = 1,
+    /// Flexible boundaries with famcc-core's margin, min(0.01, smallest
+    /// final width / 10) (the default).
+    Auto = 2,
+}
+
+/// `FAMCC_FEEDBACK_KIND_LINEAR` parameters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccLinear<T> {
+    /// Gain `k > 0`, 1/s.
+    pub k: T,
+}
+
+/// `FAMCC_FEEDBACK_KIND_FINITE_TIME` parameters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccFiniteTime<T> {
+    /// Gain `k > 0`.
+    pub k: T,
+    /// Exponent `0 < p < 1`.
+    pub p: T,
+}
+
+/// `FAMCC_FEEDBACK_KIND_FIXED_TIME` parameters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccFixedTime<T> {
+    /// Low-power gain `alpha > 0`.
+    pub alpha: T,
+    /// Low power `0 < p < 1`.
+    pub p: T,
+    /// High-power gain `beta > 0`.
+    pub beta: T,
+    /// High power `q > 1`.
+    pub q: T,
+}
+
+/// `FAMCC_FEEDBACK_KIND_VARIABLE_EXPONENT` parameters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccVariableExponent<T> {
+    /// Gain `k > 0`.
+    pub k: T,
+    /// Exponent at 0, `0 < r_b < 1`.
+    pub r_b: T,
+    /// Exponent at `|s| = 1`, `r_1 > 1`.
+    pub r_1: T,
+    /// Exponent at infinity, `r_t > r_1`.
+    pub r_t: T,
+}
+
+/// `FAMCC_FEEDBACK_KIND_MOULAY_DISCONTINUOUS` parameters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccMoulay<T> {
+    /// Gain `beta > 0`.
+    pub beta: T,
+    /// Exponent numerator coefficient `lambda > 0`.
+    pub lambda: T,
+    /// Exponent denominator coefficient `mu >= 0`.
+    pub mu: T,
+}
+
+/// The parameters of a feedback law; the member named by `FamccFeedback.kind`
+/// is the one read.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union FamccFeedbackParams<T: Copy> {
+    /// For `FAMCC_FEEDBACK_KIND_LINEAR`.
+    pub linear: FamccLinear<T>,
+    /// For `FAMCC_FEEDBACK_KIND_FINITE_TIME`.
+    pub finite_time: FamccFiniteTime<T>,
+    /// For `FAMCC_FEEDBACK_KIND_FIXED_TIME`.
+    pub fixed_time: FamccFixedTime<T>,
+    /// For `FAMCC_FEEDBACK_KIND_VARIABLE_EXPONENT`.
+    pub variable_exponent: FamccVariableExponent<T>,
+    /// For `FAMCC_FEEDBACK_KIND_MOULAY_DISCONTINUOUS`.
+    pub moulay: FamccMoulay<T>,
+}
+
+/// A feedback law `h_p`: a tagged union (`kind` is a `FamccFeedbackKind`).
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct FamccFeedback<T: Copy> {
+    /// A `FAMCC_FEEDBACK_KIND_*` value.
+    pub kind: u32,
+    /// The parameters of that kind.
+    pub params: FamccFeedbackParams<T>,
+}
+
+/// A skew of a stage's law (`kind` is a `FamccSkewKind`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccSkew<T> {
+    /// A `FAMCC_SKEW_KIND_*` value (`NONE`: the other fields are ignored).
+    pub kind: u32,
+    /// Vertical offset `eps_s > 0`.
+    pub eps_s: T,
+    /// Transition half-width `eps_z > 0`.
+    pub eps_z: T,
+    /// NSMD slope factor `k_pp > 0` (ignored by SSMD).
+    pub k_pp: T,
+    /// A `FAMCC_TRANSITION_*` value for `T1`, `T2`.
+    pub transition: u32,
+}
+
+/// One manifold stage `h_m(i)`: a law and an optional skew.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct FamccStage<T: Copy> {
+    /// The feedback law.
+    pub feedback: FamccFeedback<T>,
+    /// The skew (`kind = FAMCC_SKEW_KIND_NONE` for none).
+    pub skew: FamccSkew<T>,
+}
+
+/// The constraint type and its final half-widths.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccConstraint<T> {
+    /// A `FAMCC_CONSTRAINT_KIND_*` value.
+    pub kind: u32,
+    /// Final horizontal half-width (LaMC, OMC).
+    pub eps_x: T,
+    /// Final vertical half-width (LoMC, OMC).
+    pub eps_y: T,
+}
+
+/// The high-gain differentiator (output feedback).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccDifferentiator<T> {
+    /// Nonzero: use it (required by `*_step`).
+    pub enabled: u32,
+    /// Time constant `mu > 0`, seconds.
+    pub mu: T,
+    /// Hurwitz coefficients `a_1..a_order` (the rest is ignored).
+    pub a: [T; FAMCC_MAX_ORDER],
+    /// A `FAMCC_DISCRETIZATION_*` value.
+    pub discretization: u32,
+}
+
+/// Everything that defines a controller (mirrors `famcc_core::Config`).
+/// Fill it with `famcc_config_f32_defaults` / `_f64_defaults`, then set the
+/// required values.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct FamccConfig<T: Copy> {
+    /// Sample period, seconds (> 0).
+    pub dt: T,
+    /// Envelope settling time `T_s`, seconds (> 0; default famcc-core's, 1 s).
+    pub settle_time: T,
+    /// Initial-width factor `k0 > 1` (default famcc-core's, 2).
+    pub k0: T,
+    /// Control gain `k_u > 0`.
+    pub k_u: T,
+    /// Constraint type and final half-widths.
+    pub constraint: FamccConstraint<T>,
+    /// A `FAMCC_GAMMA_*` value (default log).
+    pub gamma: u32,
+    /// A `FAMCC_FLEXIBLE_*` value (default `AUTO`).
+    pub flexible: u32,
+    /// Flexible-boundary margin `rho_e > 0`, read with `FAMCC_FLEXIBLE_ON`.
+    pub rho_e: T,
+    /// A `FAMCC_TRANSITION_*` value for the flexible boundary (default exponential).
+    pub transition: u32,
+    /// A `FAMCC_LATCH_*` value (default paper).
+    pub latch: u32,
+    /// Stages `h_m1..h_m(order-1)`; the rest is ignored.
+    pub stages: [FamccStage<T>; FAMCC_MAX_STAGES],
+    /// The differentiator.
+    pub differentiator: FamccDifferentiator<T>,
+    /// Nonzero: use `initial_derivatives[1..order]` as the first estimate.
+    pub has_initial_derivatives: u32,
+    /// Initial derivative estimates (slot 0 ignored).
+    pub initial_derivatives: [T; FAMCC_MAX_ORDER],
+    /// Nonzero: clamp `|z_hat_i| <= estimate_limits[i]` before the law.
+    pub has_estimate_limits: u32,
+    /// Estimate limits (> 0, infinity allowed).
+    pub estimate_limits: [T; FAMCC_MAX_ORDER],
+}
+
+/// What the last step did (mirrors `famcc_core::Diagnostics`; arrays hold
+/// `order` used entries).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccDiagnostics<T> {
+    /// System order of the controller (2 or 3).
+    pub order: u32,
+    /// Nonzero when the flexible boundary was expanded.
+    pub expanded: u32,
+    /// Time of the last step's sample, seconds.
+    pub t: T,
+    /// The constraint variable used for the output (after clamping).
+    pub xi: T,
+    /// The nominal constraint variable, before clamping.
+    pub xi_nominal: T,
+    /// The flexible boundary's expansion factor (1 while the bounds are nominal).
+    pub expansion: T,
+    /// The manifold value `s = s_n`.
+    pub s: T,
+    /// `s_1..s_n`.
+    pub stages: [T; FAMCC_MAX_ORDER],
+    /// `s_{n-1}`.
+    pub s_prev: T,
+    /// `d/dt s_{n-1}`.
+    pub ds_prev: T,
+    /// Flexible upper bounds `(x~_U, y~_U)`.
+    pub bounds: [T; 2],
+    /// Nominal upper bounds `(x_U, y_U)`.
+    pub nominal_bounds: [T; 2],
+    /// The estimate the output was computed from.
+    pub z_hat: [T; FAMCC_MAX_ORDER],
+    /// Nonzero when `saturation_gap` is valid (`*_step_applied` was used).
+    pub has_saturation_gap: u32,
+    /// `v_{k-1} - applied`.
+    pub saturation_gap: T,
+    /// Steps at which `|xi|` had to be clamped below 1.
+    pub clamp_count: u64,
+    /// The output `v`.
+    pub v: T,
+}
+
+/// Why a configuration was rejected (NUL-terminated, truncated if needed).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct FamccError {
+    /// Zero-based stage for per-stage parameters, -1 otherwise.
+    pub stage: i32,
+    /// The parameter's name (`eps`, `p`, `k_u`, `feedback.kind`, ...).
+    pub parameter: [c_char; 32],
+    /// The rule it broke, e.g. `must be finite and > 0`.
+    pub rule: [c_char; 160],
+}
+
+/// `float` configuration.
+pub type FamccConfigF32 = FamccConfig<f32>;
+/// `double` configuration.
+pub type FamccConfigF64 = FamccConfig<f64>;
+/// `float` diagnostics.
+pub type FamccDiagnosticsF32 = FamccDiagnostics<f32>;
+/// `double` diagnostics.
+pub type FamccDiagnosticsF64 = FamccDiagnostics<f64>;
+
+/// 64-bit words of storage per controller type: the controller and a tag
+/// word (x86_64: 42, 80, 54, 103 words in use), plus ~25 % headroom so that
+/// famcc-core can grow without an ABI change. Checked at compile time on
+/// every target.
+pub const FAMCC_O2_F32_WORDS: usize = 56;
+/// See `FAMCC_O2_F32_WORDS`.
+pub const FAMCC_O2_F64_WORDS: usize = 104;
+/// See `FAMCC_O2_F32_WORDS`.
+pub const FAMCC_O3_F32_WORDS: usize = 72;
+/// See `FAMCC_O2_F32_WORDS`.
+pub const FAMCC_O3_F64_WORDS: usize = 128;
+
+/// Storage for an order-2 `float` controller (opaque; 8-byte aligned).
+#[repr(C)]
+pub struct FamccO2F32 {
+    _opaque: [u64; FAMCC_O2_F32_WORDS],
+}
+
+/// Storage for an order-2 `double` controller (opaque; 8-byte aligned).
+#[repr(C)]
+pub struct FamccO2F64 {
+    _opaque: [u64; FAMCC_O2_F64_WORDS],
+}
+
+/// Storage for an order-3 `float` controller (opaque; 8-byte aligned).
+#[repr(C)]
+pub struct FamccO3F32 {
+    _opaque: [u64; FAMCC_O3_F32_WORDS],
+}
+
+/// Storage for an order-3 `double` controller (opaque; 8-byte aligned).
+#[repr(C)]
+pub struct FamccO3F64 {
+    _opaque: [u64; FAMCC_O3_F64_WORDS],
+}

@@ -1,0 +1,102 @@
+//! `famcc.Diagnostics`: what a controller did at its last step (read-only).
+
+use famcc_core::Real;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+
+/// Diagnostics of the last step (read-only).
+#[pyclass(frozen, module = "famcc._core")]
+#[derive(Clone, Debug)]
+pub struct Diagnostics {
+    /// Time of the last sample, s.
+    #[pyo3(get)]
+    t: f64,
+    /// Constraint variable used for the output (flexible xi~).
+    #[pyo3(get)]
+    xi: f64,
+    /// Nominal constraint variable xi (eq. (28)).
+    #[pyo3(get)]
+    xi_nominal: f64,
+    /// Manifold value s = s_n.
+    #[pyo3(get)]
+    s: f64,
+    stages: Vec<f64>,
+    /// s_{n-1}.
+    #[pyo3(get)]
+    s_prev: f64,
+    /// d/dt s_{n-1}.
+    #[pyo3(get)]
+    ds_prev: f64,
+    /// Flexible upper bounds (x~_U, y~_U).
+    #[pyo3(get)]
+    bounds: (f64, f64),
+    /// Nominal upper bounds (x_U, y_U).
+    #[pyo3(get)]
+    nominal_bounds: (f64, f64),
+    z_hat: Vec<f64>,
+    /// True when the flexible bounds were expanded.
+    #[pyo3(get)]
+    expanded: bool,
+    /// Expansion factor of the flexible bounds (flexible / nominal, 1.0 when nominal).
+    #[pyo3(get)]
+    expansion: f64,
+    /// v_{k-1} - applied, when `applied` was passed.
+    #[pyo3(get)]
+    saturation_gap: Option<f64>,
+    /// Steps at which |xi| had to be clamped below 1.
+    #[pyo3(get)]
+    clamp_count: u64,
+    /// The output v.
+    #[pyo3(get)]
+    v: f64,
+}
+
+impl Diagnostics {
+    pub fn from_core<T: Real, const N: usize>(d: &famcc_core::Diagnostics<T, N>) -> Self {
+        let f = |x: T| x.to_f64_lossless();
+        Self {
+            t: f(d.t),
+            xi: f(d.xi),
+            xi_nominal: f(d.xi_nominal),
+            s: f(d.s),
+            stages: d.stages.iter().map(|x| f(*x)).collect(),
+            s_prev: f(d.s_prev),
+            ds_prev: f(d.ds_prev),
+            bounds: (f(d.bounds.0), f(d.bounds.1)),
+            nominal_bounds: (f(d.nominal_bounds.0), f(d.nominal_bounds.1)),
+            z_hat: d.z_hat.iter().map(|x| f(*x)).collect(),
+            expanded: d.expanded,
+            expansion: f(d.expansion),
+            saturation_gap: d.saturation_gap.map(f),
+            clamp_count: d.clamp_count,
+            v: f(d.v),
+        }
+    }
+}
+
+#[pymethods]
+impl Diagnostics {
+    /// The estimate the output was computed from (NumPy array).
+    #[getter]
+    fn z_hat<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.z_hat)
+    }
+    /// s_1..s_n (NumPy array).
+    #[getter]
+    fn stages<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.stages)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Diagnostics(t={:?}, xi={:?}, s={:?}, bounds={:?}, nominal_bounds={:?}, z_hat={:?}, expanded={}, clamp_count={})",
+            self.t,
+            self.xi,
+            self.s,
+            self.bounds,
+            self.nominal_bounds,
+            self.z_hat,
+            if self.expanded { "True" } else { "False" },
+            self.clamp_count
+        )
+    }
+}

@@ -1,0 +1,171 @@
+//! `famcc.HighGain`: the high-gain differentiator's parameters. The rules
+//! and the paper's choice of them are famcc-core's.
+
+use crate::errors::{config_err, ConfigError};
+use crate::names::DISCRETIZATION;
+use crate::orders::with_order;
+use famcc_core::config::{check_estimate_limits, check_order};
+use famcc_core::differentiator::{paper_coefficients, PAPER_MU};
+use famcc_core::{Discretization, Real};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+/// The high-gain differentiator (eq. (34), HGD): gain `mu` (s), Hurwitz
+/// coefficients `a`, discretization "exact" (zero-order hold), "euler" or
+/// "tustin", and an optional saturation `limits` of the estimates fed to
+/// the law.
+#[pyclass(frozen, module = "famcc._core")]
+#[derive(Clone, Debug)]
+pub struct HighGain {
+    #[pyo3(get)]
+    pub mu: f64,
+    pub a: Vec<f64>,
+    pub discretization: Discretization,
+    pub limits: Option<Vec<f64>>,
+}
+
+impl HighGain {
+    /// The paper's differentiator for `order` (famcc-core's
+    /// `HighGain::paper`), with the discretization's default.
+    pub fn paper(order: usize) -> PyResult<Self> {
+        Self::default(order, PAPER_MU, DISCRETIZATION.default_name())
+    }
+
+    /// The core's differentiator of order `N` (`a` must have `N` entries).
+    pub fn core<T: Real, const N: usize>(&self) -> Option<famcc_core::HighGain<T, N>> {
+        let a = to_array::<T, N>(&self.a)?;
+        Some(famcc_core::HighGain::new(
+            T::from_f64(self.mu),
+            a,
+            self.discretization,
+        ))
+    }
+
+    /// The estimate limits of order `N`, if any.
+    pub fn core_limits<T: Real, const N: usize>(&self) -> Option<[T; N]> {
+        self.limits.as_deref().and_then(to_array::<T, N>)
+    }
+
+    /// The object of a core differentiator and its estimate limits.
+    pub fn from_core<T: Real, const N: usize>(
+        h: &famcc_core::HighGain<T, N>,
+        limits: Option<&[T; N]>,
+    ) -> Self {
+        let v = |x: &[T; N]| x.iter().map(|x| x.to_f64_lossless()).collect::<Vec<_>>();
+        Self {
+            mu: h.mu.to_f64_lossless(),
+            a: v(&h.a),
+            discretization: h.discretization,
+            limits: limits.map(v),
+        }
+    }
+}
+
+/// `v` as an array of `N` values of `T` (`None` for another length).
+pub fn to_array<T: Real, const N: usize>(v: &[f64]) -> Option<[T; N]> {
+    if v.len() != N {
+        return None;
+    }
+    let mut out = [T::zero(); N];
+    out.iter_mut().zip(v).for_each(|(o, x)| *o = T::from_f64(*x));
+    Some(out)
+}
+
+#[pymethods]
+impl HighGain {
+    #[new]
+    #[pyo3(signature = (mu, a, discretization = DISCRETIZATION.default_name(), limits = None))]
+    fn new(mu: f64, a: Vec<f64>, discretization: &str, limits: Option<Vec<f64>>) -> PyResult<Self> {
+        check_order(a.len()).map_err(|e| {
+            ConfigError::new_err(format!(
+                "a must have one coefficient per order: {e} (got {})",
+                a.len()
+            ))
+        })?;
+        if let Some(l) = &limits {
+            if l.len() != a.len() {
+                return Err(ConfigError::new_err(format!(
+                    "limits must have one entry per order ({}), got {}",
+                    a.len(),
+                    l.len()
+                )));
+            }
+            check_estimate_limits(l).map_err(|e| ConfigError::new_err(format!("limits {}", e.rule)))?;
+        }
+        let h = Self {
+            mu,
+            a,
+            discretization: DISCRETIZATION.parse(discretization, "discretization")?,
+            limits,
+        };
+        with_order!(h.a.len(), N => match h.core::<f64, N>() {
+            Some(core) => core.validate().map_err(config_err)?,
+            None => unreachable_length()?,
+        }, _ => unreachable_length()?);
+        Ok(h)
+    }
+
+    /// The paper's differentiator for an order: mu = 0.01, a = (4, 4) at
+    /// order 2, (4, 6, 4) at order 3, binomial (s + 2)^n otherwise
+    /// (famcc-core's `HighGain::paper`).
+    #[staticmethod]
+    #[pyo3(signature = (order, mu = PAPER_MU, discretization = DISCRETIZATION.default_name()))]
+    fn default(order: usize, mu: f64, discretization: &str) -> PyResult<Self> {
+        check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
+        let mut a = vec![0.0; order];
+        paper_coefficients(&mut a);
+        Self::new(mu, a, discretization, None)
+    }
+
+    #[getter]
+    fn a<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        PyTuple::new(py, &self.a)
+    }
+    #[getter(discretization)]
+    fn get_discretization(&self) -> &'static str {
+        DISCRETIZATION.name(self.discretization)
+    }
+    #[getter(limits)]
+    fn get_limits<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyTuple>>> {
+        self.limits.as_ref().map(|l| PyTuple::new(py, l)).transpose()
+    }
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<HighGain>()
+            .map(|o| {
+                let o = o.get();
+                o.mu == self.mu
+                    && o.a == self.a
+                    && o.discretization == self.discretization
+                    && o.limits == self.limits
+            })
+            .unwrap_or(false)
+    }
+    fn __repr__(&self) -> String {
+        let mut s = format!(
+            "HighGain(mu={:?}, a={:?}, discretization='{}'",
+            self.mu,
+            self.a,
+            DISCRETIZATION.name(self.discretization)
+        );
+        if let Some(l) = &self.limits {
+            s.push_str(&format!(", limits={l:?}"));
+        }
+        s.push(')');
+        s
+    }
+    #[allow(clippy::type_complexity)]
+    fn __getnewargs__(&self) -> (f64, Vec<f64>, &'static str, Option<Vec<f64>>) {
+        (
+            self.mu,
+            self.a.clone(),
+            DISCRETIZATION.name(self.discretization),
+            self.limits.clone(),
+        )
+    }
+}
+
+/// The length was checked by `check_order`; this is never reached.
+fn unreachable_length() -> PyResult<()> {
+    Err(ConfigError::new_err("a must have one coefficient per order"))
+}
