@@ -448,5 +448,8 @@ def design_rules(
     gain: float | None = None,
     noise_std: float = 0.0,
     integral: bool | None = None,
+    phase_budget: float | None = None,
+    mu_per_dt: float | None = None,
+    settle_fraction: float | None = None,
 ) -> dict[str, Any]:
     """The design rules of famcc-core (see :func:`famcc.design`)."""

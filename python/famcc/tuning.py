@@ -293,6 +293,9 @@ def design(
     gain: float | None = None,
     noise_std: float = 0.0,
     integral: bool | None = None,
+    phase_budget: float | None = None,
+    mu_per_dt: float | None = None,
+    settle_fraction: float | None = None,
 ) -> Design:
     """A controller for the requirements, from rules (no simulation).
 
@@ -321,6 +324,14 @@ def design(
     integral : bool, optional
         Integral action; None chooses it (on when ``gain`` is known and the law
         order ``n + 1`` fits in 8).
+    phase_budget : float, optional
+        The phase budget of the linearized sampled loop, rad (default 0.8, about
+        45 degrees of margin): larger is faster and less damped. A tuning knob
+        of :func:`tune`.
+    mu_per_dt : float, optional
+        The smallest differentiator time constant in samples (default 10).
+    settle_fraction : float, optional
+        The envelope's preset time as a fraction of ``settle_time`` (default 0.5).
 
     Returns
     -------
@@ -345,6 +356,9 @@ def design(
         None if gain is None else float(gain),
         float(noise_std),
         integral,
+        phase_budget,
+        mu_per_dt,
+        settle_fraction,
     )
     req = {
         "order": int(order),
@@ -356,6 +370,9 @@ def design(
         "gain": None if gain is None else float(gain),
         "noise_std": float(noise_std),
         "integral": integral,
+        "phase_budget": phase_budget,
+        "mu_per_dt": mu_per_dt,
+        "settle_fraction": settle_fraction,
     }
     params = {k: v for k, v in raw.items() if k != "checks"}
     checks = tuple(

@@ -28,7 +28,7 @@ fn level_name(l: Level) -> &'static str {
 /// The design rules of famcc-core: the chosen numbers and the findings
 /// `(rule, level, value, limit, suggestion)`.
 #[pyfunction]
-#[pyo3(signature = (order, dt, u_limits, eps, settle_time, hold_input, gain=None, noise_std=0.0, integral=None))]
+#[pyo3(signature = (order, dt, u_limits, eps, settle_time, hold_input, gain=None, noise_std=0.0, integral=None, phase_budget=None, mu_per_dt=None, settle_fraction=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn design_rules<'py>(
     py: Python<'py>,
@@ -41,11 +41,23 @@ pub fn design_rules<'py>(
     gain: Option<f64>,
     noise_std: f64,
     integral: Option<bool>,
+    phase_budget: Option<f64>,
+    mu_per_dt: Option<f64>,
+    settle_fraction: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut req = Requirements::new(order, dt, u_limits, eps, settle_time, hold_input);
     req.gain = gain;
     req.noise_std = noise_std;
     req.integral = integral;
+    if let Some(b) = phase_budget {
+        req.phase_budget = b;
+    }
+    if let Some(m) = mu_per_dt {
+        req.mu_per_dt = m;
+    }
+    if let Some(f) = settle_fraction {
+        req.settle_fraction = f;
+    }
     let d = design::design(&req).map_err(config_err)?;
     let out = PyDict::new(py);
     out.set_item("law_order", d.law_order)?;

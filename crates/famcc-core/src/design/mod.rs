@@ -72,6 +72,14 @@ pub struct Requirements {
     /// Integral action; `None` chooses it (on when `gain` is known and
     /// `order < MAX_ORDER`).
     pub integral: Option<bool>,
+    /// The phase budget `B` of the linearized loop, rad ([`PHASE_BUDGET`]):
+    /// larger is faster and less damped.
+    pub phase_budget: f64,
+    /// The smallest differentiator time constant in sample periods
+    /// ([`MU_PER_DT`]).
+    pub mu_per_dt: f64,
+    /// The envelope's preset time `T_s` as a fraction of `settle_time` (0.5).
+    pub settle_fraction: f64,
 }
 
 impl Requirements {
@@ -94,6 +102,9 @@ impl Requirements {
             gain: None,
             noise_std: 0.0,
             integral: None,
+            phase_budget: PHASE_BUDGET,
+            mu_per_dt: MU_PER_DT,
+            settle_fraction: 0.5,
         }
     }
 
@@ -121,6 +132,17 @@ impl Requirements {
         }
         if !(self.noise_std.is_finite() && self.noise_std >= 0.0) {
             return Err(ConfigError::new("noise_std", "must be finite and >= 0"));
+        }
+        pos(self.phase_budget, "phase_budget")?;
+        if self.phase_budget >= core::f64::consts::FRAC_PI_2 {
+            return Err(ConfigError::new(
+                "phase_budget",
+                "must be below pi/2 (90 degrees)",
+            ));
+        }
+        pos(self.mu_per_dt, "mu_per_dt")?;
+        if !(self.settle_fraction > 0.0 && self.settle_fraction < 1.0) {
+            return Err(ConfigError::new("settle_fraction", "must be between 0 and 1"));
         }
         if self.integral == Some(true) && self.order >= MAX_ORDER {
             return Err(ConfigError::new(
@@ -269,12 +291,12 @@ pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
     } else {
         Discretization::Tustin
     };
-    let ratio = (2 * n_law - 1) as f64 / PHASE_BUDGET;
+    let ratio = (2 * n_law - 1) as f64 / req.phase_budget;
     let k_u = F::max(req.hold_input, 0.05 * u_scale) / (2.0 * F::atanh(XI_HOLD));
     let mut d = Design {
         law_order: n_law,
         integral,
-        mu: MU_PER_DT * req.dt,
+        mu: req.mu_per_dt * req.dt,
         a,
         discretization,
         lambda: 0.0,
@@ -283,7 +305,7 @@ pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
         eps_s: 0.0,
         rho_e: 0.0,
         k0: 2.0,
-        settle_time: 0.5 * req.settle_time,
+        settle_time: req.settle_fraction * req.settle_time,
         checks: [Check {
             rule: Rule::GainUnknown,
             level: Level::Ok,
