@@ -44,7 +44,7 @@ from famcc._core import (
 )
 from famcc.reporting import report, reproduce
 from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
-from famcc.tuning import Design, DesignWarning, Finding, design
+from famcc.tuning import Design, DesignWarning, Finding, design, tune
 
 __all__ = [
     "MAX_ORDER",
@@ -84,6 +84,7 @@ __all__ = [
     "simulate",
     "skewed",
     "transition",
+    "tune",
 ]
 
 
