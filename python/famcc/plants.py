@@ -46,10 +46,13 @@ from famcc._jet import Jet, as_scalar, cos, sin
 
 __all__ = [
     "VARIANTS",
+    "Family",
+    "FamilyPlant",
     "PhysicalPlant",
     "Plant",
     "StrictFeedback",
     "dc_motor",
+    "family",
     "flexible_joint",
     "pendulum",
     "quadrotor_altitude",
@@ -285,11 +288,19 @@ def _check_variant(variant: str) -> str:
 
 
 class _SecondOrder(StrictFeedback):
-    """Paper eq. System_sim, with closed-form output derivatives, ``G_a`` and ``F_a``."""
+    """Paper eq. System_sim, with closed-form output derivatives, ``G_a`` and ``F_a``.
 
-    def __init__(self, variant: str) -> None:
-        self._amp = 1.0 if variant == "paper" else 3.0
+    ``gain`` scales the input gain ``g2`` and ``amp`` is the disturbance amplitude;
+    with ``gain = 1`` and the variant's ``amp`` the arithmetic is the paper's, bit
+    for bit (multiplying by 1.0 is exact).
+    """
+
+    def __init__(self, variant: str, gain: float = 1.0, amp: float | None = None,
+                 x0: Sequence[float] | None = None) -> None:
+        self._amp = (1.0 if variant == "paper" else 3.0) if amp is None else float(amp)
+        self._gain = float(gain)
         amp = self._amp
+        b = self._gain
 
         def g1(x: Any, t: Any) -> Any:
             return 1.0 + 0.1 * cos(x[0]) + 0.1 * sin(t)
@@ -298,13 +309,16 @@ class _SecondOrder(StrictFeedback):
             return -x[0] + sin(t)
 
         def g2(x: Any, t: Any) -> Any:
-            return 2.0 + 0.2 * sin(x[0] * x[1]) + 0.1 * cos(t)
+            return b * (2.0 + 0.2 * sin(x[0] * x[1]) + 0.1 * cos(t))
 
         def f2(x: Any, t: Any) -> Any:
             return -(x[0] * x[0] - 1.0) * x[1] + amp * sin(t) + amp * cos(2.0 * t)
 
-        super().__init__([g1, g2], [f1, f2], [-1.0, 0.5], name="second-order",
-                         variant=variant)
+        super().__init__([g1, g2], [f1, f2], [-1.0, 0.5] if x0 is None else x0,
+                         name="second-order", variant=variant)
+        if self._x0.shape != (2,):
+            raise ValueError(f"x0 must have length 2, got {self._x0.shape[0]}")
+        self.params = {"gain": self._gain, "amp": self._amp}
 
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
         return np.array(self.rhs_fast(t, (float(x[0]), float(x[1])), u))
@@ -314,7 +328,7 @@ class _SecondOrder(StrictFeedback):
         x1, x2 = x
         st = math.sin(t)
         g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * st
-        g2 = 2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * math.cos(t)
+        g2 = self._gain * (2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * math.cos(t))
         f2 = -(x1 * x1 - 1.0) * x2 + self._amp * (st + math.cos(2.0 * t))
         return (g1 * x2 - x1 + st, g2 * u + f2)
 
@@ -327,7 +341,7 @@ class _SecondOrder(StrictFeedback):
         x1, x2 = float(x[0]), float(x[1])
         st, ct = math.sin(t), math.cos(t)
         g1 = 1.0 + 0.1 * math.cos(x1) + 0.1 * st
-        g2 = 2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * ct
+        g2 = self._gain * (2.0 + 0.2 * math.sin(x1 * x2) + 0.1 * ct)
         f2 = -(x1 * x1 - 1.0) * x2 + self._amp * (st + math.cos(2.0 * t))
         dx1 = g1 * x2 - x1 + st
         dg1 = -0.1 * math.sin(x1) * dx1 + 0.1 * ct       # d/dt g1
@@ -336,9 +350,17 @@ class _SecondOrder(StrictFeedback):
 
 
 class _ThirdOrder(StrictFeedback):
-    """Paper eq. System_sim3 (with the factor ``x2`` restored in ``x1'``)."""
+    """Paper eq. System_sim3 (with the factor ``x2`` restored in ``x1'``).
 
-    def __init__(self, variant: str) -> None:
+    ``gain`` scales the input gain ``g3`` and ``amp`` is the disturbance amplitude
+    (10 in both variants); the defaults give the paper's arithmetic bit for bit.
+    """
+
+    def __init__(self, variant: str, gain: float = 1.0, amp: float = 10.0,
+                 x0: Sequence[float] | None = None) -> None:
+        self._gain, self._amp = float(gain), float(amp)
+        b, amp = self._gain, self._amp
+
         def g1(x: Any, t: Any) -> Any:
             return 1.0 + 0.1 * sin(x[0]) + 0.1 * cos(t)
 
@@ -352,27 +374,30 @@ class _ThirdOrder(StrictFeedback):
             return -(x[0] * x[0] - 1.0) * x[1] + sin(t)
 
         def g3(x: Any, t: Any) -> Any:
-            return 2.0 + 0.2 * sin(x[0] * x[1] * x[2]) + 0.1 * cos(t)
+            return b * (2.0 + 0.2 * sin(x[0] * x[1] * x[2]) + 0.1 * cos(t))
 
         def f3(x: Any, t: Any) -> Any:
-            return -(x[0] * x[0] + x[1]) * x[2] + 10.0 * sin(t) + 10.0 * cos(2.0 * t)
+            return -(x[0] * x[0] + x[1]) * x[2] + amp * sin(t) + amp * cos(2.0 * t)
 
-        x0 = [1.0, -0.2, 0.4] if variant == "paper" else [1.0, 0.5, 4.0]
+        if x0 is None:
+            x0 = [1.0, -0.2, 0.4] if variant == "paper" else [1.0, 0.5, 4.0]
         super().__init__([g1, g2, g3], [f1, f2, f3], x0, name="third-order",
                          variant=variant)
+        if self._x0.shape != (3,):
+            raise ValueError(f"x0 must have length 3, got {self._x0.shape[0]}")
+        self.params = {"gain": self._gain, "amp": self._amp}
 
-    @staticmethod
-    def _terms(t: float, x: np.ndarray) -> dict[str, float]:
+    def _terms(self, t: float, x: np.ndarray) -> dict[str, float]:
         x1, x2, x3 = float(x[0]), float(x[1]), float(x[2])
         st, ct = math.sin(t), math.cos(t)
         sx1, cx1 = math.sin(x1), math.cos(x1)
         p12 = x1 * x2
         g1 = 1.0 + 0.1 * sx1 + 0.1 * ct
         g2 = 1.0 + 0.1 * math.cos(p12) + 0.1 * st
-        g3 = 2.0 + 0.2 * math.sin(p12 * x3) + 0.1 * ct
+        g3 = self._gain * (2.0 + 0.2 * math.sin(p12 * x3) + 0.1 * ct)
         f1 = -x1 + ct
         f2 = -(x1 * x1 - 1.0) * x2 + st
-        f3 = -(x1 * x1 + x2) * x3 + 10.0 * st + 10.0 * math.cos(2.0 * t)
+        f3 = -(x1 * x1 + x2) * x3 + self._amp * st + self._amp * math.cos(2.0 * t)
         return {"x1": x1, "x2": x2, "x3": x3, "st": st, "ct": ct, "sx1": sx1, "cx1": cx1,
                 "p12": p12, "g1": g1, "g2": g2, "g3": g3, "f1": f1, "f2": f2, "f3": f3}
 
@@ -386,8 +411,8 @@ class _ThirdOrder(StrictFeedback):
         return (
             (1.0 + 0.1 * math.sin(x1) + 0.1 * ct) * x2 - x1 + ct,
             (1.0 + 0.1 * math.cos(x1 * x2) + 0.1 * st) * x3 - (x1 * x1 - 1.0) * x2 + st,
-            (2.0 + 0.2 * math.sin(x1 * x2 * x3) + 0.1 * ct) * u
-            - (x1 * x1 + x2) * x3 + 10.0 * st + 10.0 * math.cos(2.0 * t),
+            self._gain * (2.0 + 0.2 * math.sin(x1 * x2 * x3) + 0.1 * ct) * u
+            - (x1 * x1 + x2) * x3 + self._amp * st + self._amp * math.cos(2.0 * t),
         )
 
     def _derivatives(self, t: float, x: np.ndarray) -> tuple[float, float, float, float, float]:
@@ -418,28 +443,40 @@ class _ThirdOrder(StrictFeedback):
         return gain, drift
 
 
-def second_order(variant: str = "code") -> Plant:
+def second_order(variant: str = "code", *, gain: float = 1.0, amp: float | None = None,
+                 x0: Sequence[float] | None = None) -> Plant:
     """The paper's second-order plant (eq. System_sim), ``x(0) = (-1, 0.5)``.
 
     ``x1' = (1 + 0.1 cos x1 + 0.1 sin t) x2 - x1 + sin t`` and
-    ``x2' = (2 + 0.2 sin(x1 x2) + 0.1 cos t) u + f2`` with
+    ``x2' = b (2 + 0.2 sin(x1 x2) + 0.1 cos t) u + f2`` with
     ``f2 = -(x1^2 - 1) x2 + a (sin t + cos 2t)``, ``a = 1`` in variant ``"paper"``
-    (as printed) and ``a = 3`` in variant ``"code"`` (the authors' MATLAB code).
+    (as printed) and ``a = 3`` in variant ``"code"`` (the authors' MATLAB code),
+    ``b = 1``. The keywords change the plant for robustness studies
+    (:func:`famcc.campaigns.campaign`); without them it is the paper's.
 
     Parameters
     ----------
     variant : {"code", "paper"}
+    gain : float
+        ``b``, a factor on the input gain (1: the paper's).
+    amp : float, optional
+        ``a``, the disturbance amplitude (default: the variant's).
+    x0 : (float, float), optional
+        Initial state (default ``(-1, 0.5)``).
 
     Examples
     --------
     >>> p = second_order()
     >>> p.name, p.variant, p.x0.tolist()
     ('second-order', 'code', [-1.0, 0.5])
+    >>> second_order("paper", gain=0.8, x0=(0.0, 0.0)).params
+    {'gain': 0.8, 'amp': 1.0}
     """
-    return _SecondOrder(_check_variant(variant))
+    return _SecondOrder(_check_variant(variant), gain, amp, x0)
 
 
-def third_order(variant: str = "code") -> Plant:
+def third_order(variant: str = "code", *, gain: float = 1.0, amp: float = 10.0,
+                x0: Sequence[float] | None = None) -> Plant:
     """The paper's third-order plant (eq. System_sim3).
 
     ``x1' = (1 + 0.1 sin x1 + 0.1 cos t) x2 - x1 + cos t`` (the printed equation
@@ -449,19 +486,29 @@ def third_order(variant: str = "code") -> Plant:
     + 10 cos 2t``. ``x(0) = (1, -0.2, 0.4)`` in variant ``"paper"``, ``(1, 0.5, 4)``
     in variant ``"code"``.
 
+    ``gain`` (a factor on ``g3``, 1 by default) and ``amp`` (the disturbance
+    amplitude, 10 by default) change the plant for robustness studies.
+
     Parameters
     ----------
     variant : {"code", "paper"}
+    gain, amp : float
+    x0 : (float, float, float), optional
+        Initial state (default: the variant's).
 
     Examples
     --------
     >>> third_order("paper").x0.tolist()
     [1.0, -0.2, 0.4]
+    >>> third_order(amp=5.0).params
+    {'gain': 1.0, 'amp': 5.0}
     """
-    return _ThirdOrder(_check_variant(variant))
+    return _ThirdOrder(_check_variant(variant), gain, amp, x0)
 
 
 # The physical plant suite lives in its own module; re-exported here.
+# Vectorised families of these plants (famcc.campaigns); their home is famcc.families.
+from famcc.families import Family, FamilyPlant, family
 from famcc.plant_suite import (
     PhysicalPlant,
     dc_motor,
