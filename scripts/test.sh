@@ -37,7 +37,7 @@ else
 fi
 echo "python: $PY ($("$PY" -c 'import sys; print(sys.version.split()[0])'))"
 
-"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs]'
+"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs,cluster]'
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
 cargo test -p famcc-core
