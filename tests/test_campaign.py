@@ -239,7 +239,12 @@ def test_dask_cluster_gives_the_same_2000_cases_as_local_processes():
     ):
         on_dask = _ex1(executor=client, **kw)
         assert len(client.scheduler_info()["workers"]) == 2
+        # a scheduler address (famcc campaign --scheduler): famcc opens and closes a client
+        by_address = _ex1(executor=cluster.scheduler_address, cases=40, t_end=0.3, seed=2000)
+        assert len(client.scheduler_info()["workers"]) == 2  # the cluster is still there
     _same_tables(local, on_dask)
+    for key in ("settling_time", "saturated_fraction", "max_abs_xi_nominal"):
+        assert np.array_equal(by_address.table[key], local.table[key][:40], equal_nan=True)
     assert local.n == 2000 and local.rate("bounded").tested == 2000
     assert time.perf_counter() - t0 < 120  # the budget is ~60 s; a loaded machine is slower
 

@@ -1060,6 +1060,22 @@ def campaign(
     ValueError
         For a bad argument (the message names it), or an ``out`` folder that
         holds another campaign.
+
+    Examples
+    --------
+    Ten DC motors with dispersed inertia and load under one design, in this
+    process:
+
+    >>> import famcc
+    >>> ctrl = famcc.Controller(2, 1e-3, famcc.Linear(4.0), constraint="lateral",
+    ...                         eps=0.02, k_u=20.0, settle_time=0.5)
+    >>> res = campaign("dc-motor", ctrl, cases=10, t_end=2.0, u_limits=(-12.0, 12.0),
+    ...                reference=famcc.Constant(0.5), settle_by=1.5, executor="serial",
+    ...                dispersion={"J": Uniform(0.005, 0.02), "load": Uniform(0.0, 2.0)},
+    ...                progress=False)
+    >>> r = res.rate()
+    >>> r.held + r.failed, r.lo <= r.rate <= r.hi
+    (10, True)
     """
     fam = _resolve_family(family, variant)
     cfg = _resolve_controller(controller)
