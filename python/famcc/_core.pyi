@@ -397,7 +397,14 @@ class _CallFloor:
 class PaperPlant:
     """One of the paper's plants: order 2 (examples 1-2) or 3 (example 3)."""
 
-    def __new__(cls, order: int, variant: str) -> PaperPlant: ...
+    def __new__(
+        cls,
+        order: int,
+        variant: str,
+        gain: float = 1.0,
+        amp: float | None = None,
+        x0: Sequence[float] | None = None,
+    ) -> PaperPlant: ...
     @property
     def x0(self) -> tuple[float, ...]: ...
     def rhs(
