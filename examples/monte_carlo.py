@@ -7,6 +7,10 @@ call per sample. Prints the fraction of runs that settled to |y - y_d| < 0.1
 within the paper's bound T_s + T_fn' (which depends on |z1(0)|).
 
 Run: ``python examples/monte_carlo.py [N]``
+
+The library does this (and more: dispersed plant parameters, references, noise
+and controller settings, success rates with confidence intervals, worst cases,
+Dask) in ``famcc.campaign``: see docs/campaigns.md and ``famcc campaign``.
 """
 
 import sys

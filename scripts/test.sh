@@ -38,7 +38,7 @@ else
 fi
 echo "python: $PY ($("$PY" -c 'import sys; print(sys.version.split()[0])'))"
 
-"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs]'
+"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs,cluster]'
 # fmt, clippy and rustdoc over the three workspaces: the root (core, paper,
 # binding), the C ABI and the firmware keep workspaces of their own
 # (docs/design.md §9.1: their panic = "abort" profiles and features).

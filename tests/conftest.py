@@ -8,7 +8,7 @@ import importlib.util
 import pytest
 
 #: Modules of the ``test`` extra (pyproject.toml) that tests import.
-REQUIRED = ("hypothesis", "mypy", "control", "simple_pid", "pandas")
+REQUIRED = ("hypothesis", "mypy", "control", "simple_pid", "pandas", "pyarrow", "distributed")
 
 
 def pytest_configure(config: pytest.Config) -> None:
@@ -17,5 +17,5 @@ def pytest_configure(config: pytest.Config) -> None:
     if missing:
         raise pytest.UsageError(
             f"missing test dependencies: {', '.join(missing)}; install them with "
-            "pip install -e '.[test]' (./scripts/test.sh does)"
+            "pip install -e '.[test,cluster]' (./scripts/test.sh does)"
         )

@@ -50,6 +50,27 @@ def test_bank_equals_copies_stepped_one_by_one(name):
     assert ctrl.time == 0.0
 
 
+@pytest.mark.parametrize("name", ["finite-time", "rfc", "rfc-f32"])
+def test_bank_nominal_xi_and_expansion_equal_the_copies_diagnostics(name):
+    ctrl = _designs()[name]
+    n = 12
+    bank = famcc.ControllerBank(ctrl, n)
+    copies = [copy.copy(ctrl) for _ in range(n)]
+    expanded_seen = False
+    # Errors large enough to push some controllers out of their nominal set.
+    for e in 40.0 * _errors(150, n, ctrl.order, seed=3):
+        bank.step(e)
+        for c, x in zip(copies, e):
+            c.step(float(x))
+        xi_nom, fac = bank.xi_nominal, bank.expansion
+        assert xi_nom.dtype == np.float64 and xi_nom.shape == (n,) and fac.shape == (n,)
+        assert np.array_equal(xi_nom, [c.diagnostics.xi_nominal for c in copies])
+        assert np.array_equal(fac, [c.diagnostics.expansion for c in copies])
+        assert np.array_equal(fac > 1.0, [c.diagnostics.expanded for c in copies])
+        expanded_seen |= bool(np.any(fac > 1.0))
+    assert expanded_seen  # the factor was really exercised above 1
+
+
 def test_bank_copies_a_stepped_controller_and_continues_it():
     ctrl = famcc.scenarios.paper("rfc").controller()
     for e in (0.9, 0.8, 0.7):

@@ -18,6 +18,8 @@ Any run can be seen and explained: ``famcc.simulate(...)`` returns a
 :class:`SimResult` whose ``plot()`` draws the figure of ``famcc reproduce``,
 whose ``summary()`` gives the metrics in plain words, and
 ``famcc.report(results, out=DIR)`` writes a markdown report for a list of runs.
+``famcc.campaign(...)`` runs a Monte Carlo robustness campaign over a dispersed plant
+family (:mod:`famcc.campaigns`) and judges every case.
 """
 
 from famcc import bounds, envelope, plants, scenarios, transition
@@ -42,12 +44,14 @@ from famcc._core import (
     manifold,
     skewed,
 )
+from famcc.campaigns import CampaignResult, campaign
 from famcc.reporting import report, reproduce
 from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
 from famcc.tuning import Design, DesignWarning, Finding, design, tune
 
 __all__ = [
     "MAX_ORDER",
+    "CampaignResult",
     "ConfigError",
     "Constant",
     "Controller",
@@ -74,6 +78,7 @@ __all__ = [
     "VariableExponent",
     "__version__",
     "bounds",
+    "campaign",
     "design",
     "envelope",
     "manifold",

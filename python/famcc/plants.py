@@ -47,10 +47,13 @@ from famcc._jet import Jet, as_scalar, cos, sin
 
 __all__ = [
     "VARIANTS",
+    "Family",
+    "FamilyPlant",
     "PhysicalPlant",
     "Plant",
     "StrictFeedback",
     "dc_motor",
+    "family",
     "flexible_joint",
     "pendulum",
     "quadrotor_altitude",
@@ -287,10 +290,22 @@ def _check_variant(variant: str) -> str:
 
 class _SecondOrder(StrictFeedback):
     """Paper eq. System_sim; right-hand side, exact output derivatives, ``G_a`` and
-    ``F_a`` from the compiled plant (famcc-paper)."""
+    ``F_a`` from the compiled plant (famcc-paper).
 
-    def __init__(self, variant: str) -> None:
-        amp = 1.0 if variant == "paper" else 3.0
+    ``gain`` scales the input gain ``g2`` and ``amp`` is the disturbance amplitude;
+    with ``gain = 1`` and the variant's ``amp`` the arithmetic is the paper's, bit
+    for bit (multiplying by 1.0 is exact).
+    """
+
+    def __init__(self, variant: str, gain: float = 1.0, amp: float | None = None,
+                 x0: Sequence[float] | None = None) -> None:
+        self._paper = _core.PaperPlant(2, variant, float(gain),
+                                       None if amp is None else float(amp),
+                                       None if x0 is None else [float(v) for v in x0])
+        self._gain = float(gain)
+        self._amp = (1.0 if variant == "paper" else 3.0) if amp is None else float(amp)
+        amp = self._amp
+        b = self._gain
 
         def g1(x: Any, t: Any) -> Any:
             return 1.0 + 0.1 * cos(x[0]) + 0.1 * sin(t)
@@ -299,14 +314,14 @@ class _SecondOrder(StrictFeedback):
             return -x[0] + sin(t)
 
         def g2(x: Any, t: Any) -> Any:
-            return 2.0 + 0.2 * sin(x[0] * x[1]) + 0.1 * cos(t)
+            return b * (2.0 + 0.2 * sin(x[0] * x[1]) + 0.1 * cos(t))
 
         def f2(x: Any, t: Any) -> Any:
             return -(x[0] * x[0] - 1.0) * x[1] + amp * sin(t) + amp * cos(2.0 * t)
 
-        self._paper = _core.PaperPlant(2, variant)
         super().__init__([g1, g2], [f1, f2], self._paper.x0, name="second-order",
                          variant=variant)
+        self.params = {"gain": self._gain, "amp": self._amp}
 
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
         return np.array(self._paper.rhs(t, x, u))
@@ -325,9 +340,19 @@ class _SecondOrder(StrictFeedback):
 class _ThirdOrder(StrictFeedback):
     """Paper eq. System_sim3 (with the factor ``x2`` restored in ``x1'``); right-hand
     side, exact output derivatives, ``G_a`` and ``F_a`` from the compiled plant
-    (famcc-paper)."""
+    (famcc-paper).
 
-    def __init__(self, variant: str) -> None:
+    ``gain`` scales the input gain ``g3`` and ``amp`` is the disturbance amplitude
+    (10 in both variants); the defaults give the paper's arithmetic bit for bit.
+    """
+
+    def __init__(self, variant: str, gain: float = 1.0, amp: float = 10.0,
+                 x0: Sequence[float] | None = None) -> None:
+        self._paper = _core.PaperPlant(3, variant, float(gain), float(amp),
+                                       None if x0 is None else [float(v) for v in x0])
+        self._gain, self._amp = float(gain), float(amp)
+        b, amp = self._gain, self._amp
+
         def g1(x: Any, t: Any) -> Any:
             return 1.0 + 0.1 * sin(x[0]) + 0.1 * cos(t)
 
@@ -341,14 +366,14 @@ class _ThirdOrder(StrictFeedback):
             return -(x[0] * x[0] - 1.0) * x[1] + sin(t)
 
         def g3(x: Any, t: Any) -> Any:
-            return 2.0 + 0.2 * sin(x[0] * x[1] * x[2]) + 0.1 * cos(t)
+            return b * (2.0 + 0.2 * sin(x[0] * x[1] * x[2]) + 0.1 * cos(t))
 
         def f3(x: Any, t: Any) -> Any:
-            return -(x[0] * x[0] + x[1]) * x[2] + 10.0 * sin(t) + 10.0 * cos(2.0 * t)
+            return -(x[0] * x[0] + x[1]) * x[2] + amp * sin(t) + amp * cos(2.0 * t)
 
-        self._paper = _core.PaperPlant(3, variant)
         super().__init__([g1, g2, g3], [f1, f2, f3], self._paper.x0, name="third-order",
                          variant=variant)
+        self.params = {"gain": self._gain, "amp": self._amp}
 
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
         return np.array(self._paper.rhs(t, x, u))
@@ -364,28 +389,40 @@ class _ThirdOrder(StrictFeedback):
         return self._paper.gain_and_drift(t, x)
 
 
-def second_order(variant: str = "code") -> Plant:
+def second_order(variant: str = "code", *, gain: float = 1.0, amp: float | None = None,
+                 x0: Sequence[float] | None = None) -> Plant:
     """The paper's second-order plant (eq. System_sim), ``x(0) = (-1, 0.5)``.
 
     ``x1' = (1 + 0.1 cos x1 + 0.1 sin t) x2 - x1 + sin t`` and
-    ``x2' = (2 + 0.2 sin(x1 x2) + 0.1 cos t) u + f2`` with
+    ``x2' = b (2 + 0.2 sin(x1 x2) + 0.1 cos t) u + f2`` with
     ``f2 = -(x1^2 - 1) x2 + a (sin t + cos 2t)``, ``a = 1`` in variant ``"paper"``
-    (as printed) and ``a = 3`` in variant ``"code"`` (the authors' MATLAB code).
+    (as printed) and ``a = 3`` in variant ``"code"`` (the authors' MATLAB code),
+    ``b = 1``. The keywords change the plant for robustness studies
+    (:func:`famcc.campaigns.campaign`); without them it is the paper's.
 
     Parameters
     ----------
     variant : {"code", "paper"}
+    gain : float
+        ``b``, a factor on the input gain (1: the paper's).
+    amp : float, optional
+        ``a``, the disturbance amplitude (default: the variant's).
+    x0 : (float, float), optional
+        Initial state (default ``(-1, 0.5)``).
 
     Examples
     --------
     >>> p = second_order()
     >>> p.name, p.variant, p.x0.tolist()
     ('second-order', 'code', [-1.0, 0.5])
+    >>> second_order("paper", gain=0.8, x0=(0.0, 0.0)).params
+    {'gain': 0.8, 'amp': 1.0}
     """
-    return _SecondOrder(_check_variant(variant))
+    return _SecondOrder(_check_variant(variant), gain, amp, x0)
 
 
-def third_order(variant: str = "code") -> Plant:
+def third_order(variant: str = "code", *, gain: float = 1.0, amp: float = 10.0,
+                x0: Sequence[float] | None = None) -> Plant:
     """The paper's third-order plant (eq. System_sim3).
 
     ``x1' = (1 + 0.1 sin x1 + 0.1 cos t) x2 - x1 + cos t`` (the printed equation
@@ -395,19 +432,29 @@ def third_order(variant: str = "code") -> Plant:
     + 10 cos 2t``. ``x(0) = (1, -0.2, 0.4)`` in variant ``"paper"``, ``(1, 0.5, 4)``
     in variant ``"code"``.
 
+    ``gain`` (a factor on ``g3``, 1 by default) and ``amp`` (the disturbance
+    amplitude, 10 by default) change the plant for robustness studies.
+
     Parameters
     ----------
     variant : {"code", "paper"}
+    gain, amp : float
+    x0 : (float, float, float), optional
+        Initial state (default: the variant's).
 
     Examples
     --------
     >>> third_order("paper").x0.tolist()
     [1.0, -0.2, 0.4]
+    >>> third_order(amp=5.0).params
+    {'gain': 1.0, 'amp': 5.0}
     """
-    return _ThirdOrder(_check_variant(variant))
+    return _ThirdOrder(_check_variant(variant), gain, amp, x0)
 
 
 # The physical plant suite lives in its own module; re-exported here.
+# Vectorised families of these plants (famcc.campaigns); their home is famcc.families.
+from famcc.families import Family, FamilyPlant, family
 from famcc.plant_suite import (
     PhysicalPlant,
     dc_motor,

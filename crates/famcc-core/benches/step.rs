@@ -307,7 +307,7 @@ fn with_disc<T: Real, const N: usize>(c: &Controller<T, N>, disc: Discretization
 pub fn ex1<T: Real>(disc: Discretization) -> Workload<Controller<T, 2>, T> {
     let c = common::example1::<T>(Variant::Code, DT);
     let mut closed = c; // Controller is Copy: c stays fresh
-    let r = common::run(&Second(Variant::Code), &mut closed, T_END, UNSAT, SUB);
+    let r = common::run(&Second::new(Variant::Code), &mut closed, T_END, UNSAT, SUB);
     Workload::new(with_disc(&c, disc), to_t(&r))
 }
 
@@ -315,7 +315,7 @@ pub fn ex1<T: Real>(disc: Discretization) -> Workload<Controller<T, 2>, T> {
 pub fn ex2<T: Real>(disc: Discretization) -> Workload<Controller<T, 2>, T> {
     let c = common::example2::<T>(Variant::Code, DT);
     let mut closed = c; // Controller is Copy: c stays fresh
-    let r = common::run(&Second(Variant::Code), &mut closed, T_END, UNSAT, SUB);
+    let r = common::run(&Second::new(Variant::Code), &mut closed, T_END, UNSAT, SUB);
     Workload::new(with_disc(&c, disc), to_t(&r))
 }
 
@@ -324,7 +324,7 @@ pub fn ex2<T: Real>(disc: Discretization) -> Workload<Controller<T, 2>, T> {
 pub fn ex3<T: Real>(disc: Discretization) -> Workload<Controller<T, 3>, T> {
     let c = common::example3::<T>(Variant::Code, DT);
     let mut closed = c; // Controller is Copy: c stays fresh
-    let r = common::run(&Third(Variant::Code), &mut closed, T_END, UNSAT, SUB);
+    let r = common::run(&Third::new(Variant::Code), &mut closed, T_END, UNSAT, SUB);
     Workload::new(with_disc(&c, disc), to_t(&r))
 }
 
@@ -410,7 +410,7 @@ pub fn order_n<T: Real, const N: usize>(family: Family) -> Controller<T, N> {
 pub fn scaled<T: Real, const N: usize>(family: Family) -> Workload<Controller<T, N>, T> {
     let c = common::example3::<T>(Variant::Code, DT);
     let mut closed = c; // Controller is Copy: c stays fresh
-    let r = common::run(&Third(Variant::Code), &mut closed, T_END, UNSAT, SUB);
+    let r = common::run(&Third::new(Variant::Code), &mut closed, T_END, UNSAT, SUB);
     Workload::new(order_n::<T, N>(family), to_t(&r))
 }
 
@@ -422,7 +422,7 @@ fn check_replay() {
     // Replaying a recorded input gives the recorded closed-loop outputs.
     let c = common::example1::<f64>(Variant::Code, DT);
     let mut closed = c; // Controller is Copy: c stays fresh
-    let r = common::run(&Second(Variant::Code), &mut closed, T_END, UNSAT, SUB);
+    let r = common::run(&Second::new(Variant::Code), &mut closed, T_END, UNSAT, SUB);
     let mut c2 = c;
     for (e, v) in r.z1.iter().zip(&r.v) {
         assert_eq!(c2.step(*e).unwrap().to_bits(), v.to_bits(), "replay differs");

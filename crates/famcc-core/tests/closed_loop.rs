@@ -24,21 +24,21 @@ fn t_prime(example: u8) -> f64 {
 fn simulate(example: u8, variant: Variant, limits: (f64, f64)) -> Run {
     match example {
         1 => run(
-            &Second(variant),
+            &Second::new(variant),
             &mut example1::<f64>(variant, DT),
             T_END,
             limits,
             10,
         ),
         2 => run(
-            &Second(variant),
+            &Second::new(variant),
             &mut example2::<f64>(variant, DT),
             T_END,
             limits,
             10,
         ),
         _ => run(
-            &Third(variant),
+            &Third::new(variant),
             &mut example3::<f64>(variant, DT),
             T_END,
             limits,
@@ -218,21 +218,21 @@ fn saturated_recovery_after_every_episode_20s() {
     for (ex, limits) in cases {
         let r = match ex {
             1 => run(
-                &Second(Variant::Code),
+                &Second::new(Variant::Code),
                 &mut example1::<f64>(Variant::Code, DT),
                 20.0,
                 limits,
                 10,
             ),
             2 => run(
-                &Second(Variant::Code),
+                &Second::new(Variant::Code),
                 &mut example2::<f64>(Variant::Code, DT),
                 20.0,
                 limits,
                 10,
             ),
             _ => run(
-                &Third(Variant::Code),
+                &Third::new(Variant::Code),
                 &mut example3::<f64>(Variant::Code, DT),
                 20.0,
                 limits,

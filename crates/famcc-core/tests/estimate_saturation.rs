@@ -72,7 +72,7 @@ struct Start {
 fn run_start(variant: Variant, limits: Option<[f64; 3]>, state_feedback: bool) -> Start {
     let cfg = example3_cfg::<f64>(variant, DT).unwrap();
     let mut ctrl = Controller::new(cfg.to_builder().estimate_limits(limits).build().unwrap());
-    let plant = Third(variant);
+    let plant = Third::new(variant);
     let (lo, hi) = UNSAT;
     let mut x = plant.x0();
     let mut s = Start::default();

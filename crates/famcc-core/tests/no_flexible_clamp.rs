@@ -31,11 +31,11 @@ struct Scaled(f64);
 
 impl Plant<f64, 2> for Scaled {
     fn x0(&self) -> [f64; 2] {
-        Second(Variant::Code).x0()
+        Second::new(Variant::Code).x0()
     }
     fn terms<S: Signal<f64>>(&self, c: &Clock<S>, x: &[S; 2]) -> [(S, Drift<S>); 2] {
         // The paper's plant with amplitude 1, and its disturbance scaled.
-        let [row1, (g2, [f2, _, _])] = Second(Variant::Paper).terms(c, x);
+        let [row1, (g2, [f2, _, _])] = Second::new(Variant::Paper).terms(c, x);
         let extra = (c.sin + c.cos2) * (self.0 - 1.0);
         [row1, (g2, [f2, extra, S::constant(0.0)])]
     }
@@ -132,7 +132,7 @@ fn without_rho_e<T: Real, const N: usize>(c: Controller<T, N>) -> Controller<T, 
 #[test]
 fn example1_at_50_hz_clamps_only_without_flexible_boundary() {
     let dt = 0.02;
-    let plant = Second(Variant::Code);
+    let plant = Second::new(Variant::Code);
     let mut plain = without_rho_e(example1::<f64>(Variant::Code, dt));
     let r = run_checked(&plant, &mut plain, 10.0, UNSAT);
     println!("example 1, 50 Hz, rho_e = None: {r:?}");
@@ -151,7 +151,7 @@ fn example1_at_50_hz_clamps_only_without_flexible_boundary() {
 
 #[test]
 fn example1_f32_at_50_hz_clamps_and_stays_finite() {
-    let plant = Second(Variant::Code);
+    let plant = Second::new(Variant::Code);
     let mut plain = without_rho_e(example1::<f32>(Variant::Code, 0.02));
     let r = run_checked(&plant, &mut plain, 10.0, UNSAT);
     println!("example 1 f32, 50 Hz, rho_e = None: {r:?}");
@@ -181,7 +181,7 @@ fn example1_with_ten_times_the_disturbance_clamps_at_1_khz() {
 #[test]
 fn example3_at_50_hz_clamps_and_stays_finite_until_the_plant_escapes() {
     for variant in [Variant::Code, Variant::Paper] {
-        let plant = Third(variant);
+        let plant = Third::new(variant);
         let mut plain = without_rho_e(example3::<f64>(variant, 0.02));
         let r = run_checked(&plant, &mut plain, 5.0, UNSAT);
         println!("example 3 {variant:?}, 50 Hz, rho_e = None: {r:?}");

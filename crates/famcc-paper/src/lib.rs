@@ -20,7 +20,7 @@
 //! use famcc_paper::designs::{self, Variant};
 //! use famcc_paper::plants::{self, Clock, Plant, SecondOrder};
 //! let mut ctrl = Controller::new(designs::example1::<f64>(Variant::Code, 1e-3)?);
-//! let plant = SecondOrder(Variant::Code);
+//! let plant = SecondOrder::new(Variant::Code);
 //! let mut x = plant.x0();
 //! for k in 0..1000 {
 //!     let t = k as f64 * 1e-3;

@@ -169,28 +169,52 @@ pub const SECOND_ORDER_X0: [f64; 2] = [-1.0, 0.5];
 
 /// The plant of examples 1 and 2 (eq. (44), System_sim):
 /// `x1' = (1 + 0.1 cos x1 + 0.1 sin t) x2 - x1 + sin t`,
-/// `x2' = (2 + 0.2 sin(x1 x2) + 0.1 cos t) u - (x1^2 - 1) x2 + a (sin t + cos 2t)`,
+/// `x2' = b (2 + 0.2 sin(x1 x2) + 0.1 cos t) u - (x1^2 - 1) x2 + a (sin t + cos 2t)`,
 /// `a = 1` as printed ([`Variant::Paper`]), `a = 3` in the authors' code;
-/// `x(0) = (-1, 0.5)`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SecondOrder(pub Variant);
+/// `x(0) = (-1, 0.5)`. The input-gain factor `b` (1 in the paper), the
+/// amplitude `a` and `x(0)` can be dispersed (robustness campaigns); with the
+/// defaults of [`SecondOrder::new`] the arithmetic is the paper's, bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SecondOrder {
+    /// Which printed numbers.
+    pub variant: Variant,
+    /// Input-gain factor `b` (1 in the paper).
+    pub gain: f64,
+    /// Disturbance amplitude `a`.
+    pub amp: f64,
+    /// Initial state.
+    pub x0: [f64; 2],
+}
+
+impl SecondOrder {
+    /// The paper's plant in `variant`.
+    pub const fn new(variant: Variant) -> Self {
+        let amp = match variant {
+            Variant::Paper => 1.0,
+            Variant::Code => 3.0,
+        };
+        Self {
+            variant,
+            gain: 1.0,
+            amp,
+            x0: SECOND_ORDER_X0,
+        }
+    }
+}
 
 impl<T: Real> Plant<T, 2> for SecondOrder {
     fn x0(&self) -> [T; 2] {
-        SECOND_ORDER_X0.map(T::from_f64)
+        self.x0.map(T::from_f64)
     }
 
     #[inline]
     fn terms<S: Signal<T>>(&self, c: &Clock<S>, x: &[S; 2]) -> [(S, Drift<S>); 2] {
         let k = |v: f64| T::from_f64(v);
-        let amp = k(match self.0 {
-            Variant::Paper => 1.0,
-            Variant::Code => 3.0,
-        });
+        let amp = k(self.amp);
         let [x1, x2] = *x;
         let (one, zero) = (S::constant(k(1.0)), S::constant(k(0.0)));
         let g1 = one + x1.cos() * k(0.1) + c.sin * k(0.1);
-        let g2 = S::constant(k(2.0)) + (x1 * x2).sin() * k(0.2) + c.cos * k(0.1);
+        let g2 = (S::constant(k(2.0)) + (x1 * x2).sin() * k(0.2) + c.cos * k(0.1)) * k(self.gain);
         let f2 = -(x1 * x1 - one) * x2 + (c.sin + c.cos2) * amp;
         [(g1, [-x1, c.sin, zero]), (g2, [f2, zero, zero])]
     }
@@ -200,18 +224,41 @@ impl<T: Real> Plant<T, 2> for SecondOrder {
 /// restored in `x1'` (without it the plant cannot be controlled;
 /// docs/errata.md): `x1' = (1 + 0.1 sin x1 + 0.1 cos t) x2 - x1 + cos t`,
 /// `x2' = (1 + 0.1 cos(x1 x2) + 0.1 sin t) x3 - (x1^2 - 1) x2 + sin t`,
-/// `x3' = (2 + 0.2 sin(x1 x2 x3) + 0.1 cos t) u - (x1^2 + x2) x3 + 10 sin t + 10 cos 2t`;
-/// `x(0) = (1, -0.2, 0.4)` as printed, `(1, 0.5, 4)` in the authors' code.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ThirdOrder(pub Variant);
+/// `x3' = b (2 + 0.2 sin(x1 x2 x3) + 0.1 cos t) u - (x1^2 + x2) x3 + a sin t + a cos 2t`
+/// with `a = 10`, `b = 1`; `x(0) = (1, -0.2, 0.4)` as printed, `(1, 0.5, 4)`
+/// in the authors' code. `b`, `a` and `x(0)` can be dispersed; the defaults of
+/// [`ThirdOrder::new`] give the paper's arithmetic bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThirdOrder {
+    /// Which printed numbers.
+    pub variant: Variant,
+    /// Input-gain factor `b` (1 in the paper).
+    pub gain: f64,
+    /// Disturbance amplitude `a` (10 in the paper).
+    pub amp: f64,
+    /// Initial state.
+    pub x0: [f64; 3],
+}
+
+impl ThirdOrder {
+    /// The paper's plant in `variant`.
+    pub const fn new(variant: Variant) -> Self {
+        let x0 = match variant {
+            Variant::Paper => [1.0, -0.2, 0.4],
+            Variant::Code => [1.0, 0.5, 4.0],
+        };
+        Self {
+            variant,
+            gain: 1.0,
+            amp: 10.0,
+            x0,
+        }
+    }
+}
 
 impl<T: Real> Plant<T, 3> for ThirdOrder {
     fn x0(&self) -> [T; 3] {
-        match self.0 {
-            Variant::Paper => [1.0, -0.2, 0.4],
-            Variant::Code => [1.0, 0.5, 4.0],
-        }
-        .map(T::from_f64)
+        self.x0.map(T::from_f64)
     }
 
     #[inline]
@@ -221,11 +268,14 @@ impl<T: Real> Plant<T, 3> for ThirdOrder {
         let (one, zero) = (S::constant(k(1.0)), S::constant(k(0.0)));
         let g1 = one + x1.sin() * k(0.1) + c.cos * k(0.1);
         let g2 = one + (x1 * x2).cos() * k(0.1) + c.sin * k(0.1);
-        let g3 = S::constant(k(2.0)) + (x1 * x2 * x3).sin() * k(0.2) + c.cos * k(0.1);
+        let g3 = (S::constant(k(2.0)) + (x1 * x2 * x3).sin() * k(0.2) + c.cos * k(0.1)) * k(self.gain);
         [
             (g1, [-x1, c.cos, zero]),
             (g2, [-((x1 * x1 - one) * x2), c.sin, zero]),
-            (g3, [-((x1 * x1 + x2) * x3), c.sin * k(10.0), c.cos2 * k(10.0)]),
+            (
+                g3,
+                [-((x1 * x1 + x2) * x3), c.sin * k(self.amp), c.cos2 * k(self.amp)],
+            ),
         ]
     }
 }

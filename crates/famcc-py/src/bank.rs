@@ -138,6 +138,29 @@ impl ControllerBank {
         PyArray1::from_vec(py, v)
     }
 
+    /// The nominal constraint variables xi of the last step, before the
+    /// flexible expansion and the clamp (NumPy array). Above 1 a controller's
+    /// state left the nominal constraint set (docs/design.md §8).
+    #[getter]
+    fn xi_nominal<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let v: Vec<f64> = with_bank!(&self.cores, v => v
+            .iter()
+            .map(|c| c.diagnostics().xi_nominal.to_f64_lossless())
+            .collect());
+        PyArray1::from_vec(py, v)
+    }
+
+    /// The flexible boundaries' expansion factors of the last step (NumPy
+    /// array): 1.0 while a controller's bounds are nominal, > 1 while expanded.
+    #[getter]
+    fn expansion<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let v: Vec<f64> = with_bank!(&self.cores, v => v
+            .iter()
+            .map(|c| c.diagnostics().expansion.to_f64_lossless())
+            .collect());
+        PyArray1::from_vec(py, v)
+    }
+
     /// Resets every controller.
     fn reset(&mut self) {
         with_bank!(&mut self.cores, v => v.iter_mut().for_each(|c| c.reset()))

@@ -67,12 +67,48 @@ fn tuple<'py, const N: usize>(py: Python<'py>, v: [f64; N]) -> PyResult<Bound<'p
 
 #[pymethods]
 impl PaperPlant {
+    /// `gain` scales the input gain, `amp` is the disturbance amplitude (the
+    /// variant's when None) and `x0` the initial state (the variant's when None).
     #[new]
-    fn new(order: usize, variant: &str) -> PyResult<Self> {
+    #[pyo3(signature = (order, variant, gain = 1.0, amp = None, x0 = None))]
+    fn new(order: usize, variant: &str, gain: f64, amp: Option<f64>, x0: Option<Vec<f64>>) -> PyResult<Self> {
         let v = self::variant(variant)?;
+        if !(gain.is_finite() && gain > 0.0) {
+            return Err(ConfigError::new_err(format!(
+                "gain must be finite and > 0 (got {gain})"
+            )));
+        }
+        if let Some(a) = amp {
+            if !a.is_finite() {
+                return Err(ConfigError::new_err(format!("amp must be finite (got {a})")));
+            }
+        }
+        let bad_x0 = |n: usize| ConfigError::new_err(format!("x0 must hold {n} finite numbers"));
         let which = match order {
-            2 => Which::Second(SecondOrder(v)),
-            3 => Which::Third(ThirdOrder(v)),
+            2 => {
+                let mut p = SecondOrder::new(v);
+                p.gain = gain;
+                p.amp = amp.unwrap_or(p.amp);
+                if let Some(x) = x0 {
+                    p.x0 = <[f64; 2]>::try_from(x.as_slice()).map_err(|_| bad_x0(2))?;
+                }
+                if p.x0.iter().any(|v| !v.is_finite()) {
+                    return Err(bad_x0(2));
+                }
+                Which::Second(p)
+            }
+            3 => {
+                let mut p = ThirdOrder::new(v);
+                p.gain = gain;
+                p.amp = amp.unwrap_or(p.amp);
+                if let Some(x) = x0 {
+                    p.x0 = <[f64; 3]>::try_from(x.as_slice()).map_err(|_| bad_x0(3))?;
+                }
+                if p.x0.iter().any(|v| !v.is_finite()) {
+                    return Err(bad_x0(3));
+                }
+                Which::Third(p)
+            }
             n => return Err(ConfigError::new_err(format!("order must be 2 or 3 (got {n})"))),
         };
         Ok(Self { which })

@@ -64,7 +64,7 @@ pub fn example1_loop<S: Sink>(saturated: bool, out: &mut S, rec: &mut dyn FnMut(
     } else {
         "ex1-code-unsat"
     };
-    let plant = SecondOrder(Variant::Code);
+    let plant = SecondOrder::new(Variant::Code);
     example_loop(name, Example::FiniteTime, saturated, example1(), &plant, out, rec)
 }
 
@@ -77,7 +77,7 @@ pub fn example3_loop<S: Sink>(saturated: bool, out: &mut S, rec: &mut dyn FnMut(
     } else {
         "ex3-code-unsat"
     };
-    let plant = ThirdOrder(Variant::Code);
+    let plant = ThirdOrder::new(Variant::Code);
     example_loop(name, Example::Rfc, saturated, example3(), &plant, out, rec)
 }
 
