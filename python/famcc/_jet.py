@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-__all__ = ["Jet", "as_scalar", "cos", "sin"]
+__all__ = ["Jet", "as_scalar", "cos", "sin", "tanh"]
 
 
 # ---------------------------------------------------------------------------
@@ -219,6 +219,10 @@ def sin(a: Any) -> Any:
 
 def cos(a: Any) -> Any:
     return a.cos() if isinstance(a, Jet) else math.cos(a)
+
+
+def tanh(a: Any) -> Any:
+    return a.tanh() if isinstance(a, Jet) else math.tanh(a)
 
 
 def as_scalar(value: Any) -> Any:

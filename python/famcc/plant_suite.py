@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc._jet import cos, sin, tanh
 from famcc.plants import StrictFeedback
 
 __all__ = [
@@ -53,15 +54,14 @@ G0 = 9.81  # m/s^2
 def smooth_step(t: Any, t0: float, width: float) -> Any:
     """``0.5 (1 + tanh((t - t0) / width))``: 0 well before ``t0``, 1 well after.
 
-    Works on floats, arrays and jets (no comparison), so plants stay
-    differentiable.
+    Works on floats and jets (no comparison), so plants stay differentiable.
 
     >>> round(float(smooth_step(0.0, 1.0, 0.01)), 6), round(float(smooth_step(2.0, 1.0, 0.01)), 6)
     (0.0, 1.0)
     """
     if width <= 0:
         raise ValueError(f"width must be > 0, got {width!r}")
-    return 0.5 * (1.0 + np.tanh((t - t0) / width))
+    return 0.5 * (1.0 + tanh((t - t0) / width))
 
 
 class PhysicalPlant(StrictFeedback):
@@ -101,12 +101,12 @@ class PhysicalPlant(StrictFeedback):
         return self._hold
 
     def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
-        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`)."""
-        xa = np.asarray(x, dtype=float)
+        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`): the same
+        callables, which evaluate floats with :mod:`math`."""
         n = self.order
+        g, f = self.g, self.f
         return tuple(
-            float(self.g[i](xa, t)) * (x[i + 1] if i + 1 < n else u) + float(self.f[i](xa, t))
-            for i in range(n)
+            g[i](x, t) * (x[i + 1] if i + 1 < n else u) + f[i](x, t) for i in range(n)
         )
 
     def __repr__(self) -> str:
@@ -192,7 +192,7 @@ def pendulum(
     gain = 1.0 / inertia
 
     def f2(x: Any, t: Any) -> Any:
-        return -(m * G0 * l * np.sin(x[0]) + b * x[1]) / inertia
+        return -(m * G0 * l * sin(x[0]) + b * x[1]) / inertia
 
     return PhysicalPlant(
         g=[lambda x, t: 1.0, lambda x, t: gain],
@@ -231,7 +231,7 @@ def quadrotor_altitude(
         raise ValueError(f"mass must be > 0, got {mass!r}")
 
     def g2(x: Any, t: Any) -> Any:
-        return np.cos(tilt * np.sin(0.5 * t)) / mass + 0.0 * x[0]
+        return cos(tilt * sin(0.5 * t)) / mass + 0.0 * x[0]
 
     def f2(x: Any, t: Any) -> Any:
         return -G0 - drag * x[1] / mass
@@ -280,7 +280,7 @@ def flexible_joint(
             raise ValueError(f"{label} must be > 0, got {v!r}")
 
     def f2(x: Any, t: Any) -> Any:
-        return -(k * x[0] + mgl * np.sin(x[0])) / J_link
+        return -(k * x[0] + mgl * sin(x[0])) / J_link
 
     def f4(x: Any, t: Any) -> Any:
         return (k * (x[0] - x[2]) - b_motor * x[3]) / J_motor

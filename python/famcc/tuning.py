@@ -443,6 +443,33 @@ def _measure_plant(plant: Any, result: Any) -> tuple[float, float]:
     return (max(gains) if gains else math.nan), hold
 
 
+class _Lean:
+    """A plant seen without its exact output derivatives: tuning runs need only
+    ``z1`` (the error), not the true error vector, and skip the jets."""
+
+    def __init__(self, plant: Any) -> None:
+        self._plant = plant
+        self.order, self.x0 = plant.order, plant.x0
+        self.rhs = plant.rhs
+        fast = getattr(plant, "rhs_fast", None)
+        if fast is not None:
+            self.rhs_fast = fast
+
+    def output_derivatives(self, t: float, x: Any) -> Any:
+        raise NotImplementedError("not needed for tuning")
+
+    def gain_and_drift(self, t: float, x: Any) -> Any:
+        raise NotImplementedError("not needed for tuning")
+
+
+def _derivatives_only(reference: Any, order: int) -> Any:
+    """``y_d .. y_d^(n-1)`` as a sequence of callables: enough for the loop, and
+    the simulator then skips ``-F/G``."""
+    if isinstance(reference, (list, tuple)):
+        return list(reference)[:order]
+    return [(lambda t, k=k: reference(t, k)) for k in range(order)]
+
+
 class _Noisy:
     """A controller seen through seeded white measurement noise on ``e``."""
 
@@ -532,12 +559,17 @@ def tune(
         reference = Constant(float(np.asarray(plant.x0, dtype=float)[0]))
     order = int(plant.order)
 
-    def run(d: Design) -> Any:
+    lean, lean_ref = _Lean(plant), _derivatives_only(reference, order)
+
+    def run(d: Design, measure: bool = False) -> Any:
         ctrl = d.controller()
         if noise_std:
             ctrl = _Noisy(ctrl, noise_std, seed)
         try:
-            return famcc.simulate(plant, ctrl, horizon, reference=reference, u_limits=(lo, hi))
+            if measure:  # the first run measures G and -F/G along the trajectory
+                return famcc.simulate(plant, ctrl, horizon, reference=reference,
+                                      u_limits=(lo, hi))
+            return famcc.simulate(lean, ctrl, horizon, reference=lean_ref, u_limits=(lo, hi))
         except (FloatingPointError, ValueError, OverflowError):
             return None
 
@@ -567,7 +599,7 @@ def tune(
                 noise_std=noise_std,
                 integral=integral,
             )
-            res = run(first)
+            res = run(first, measure=True)
             gm, hm = _measure_plant(plant, res) if res is not None else (math.nan, math.nan)
             g = g if g is not None else 1.2 * (gm if math.isfinite(gm) else abs(g0) * 1.5)
             h = h if h is not None else 1.2 * (hm if math.isfinite(hm) else 0.0)
