@@ -122,6 +122,8 @@ def dc_motor(
     load: float = 1.0,
     t_load: float = 2.0,
     x0: Sequence[float] = (0.0, 0.0),
+    load_step: float = 0.0,
+    t_step: float = 3.0,
 ) -> PhysicalPlant:
     """Position of a DC motor driven by its armature voltage (inductance neglected).
 
@@ -144,6 +146,10 @@ def dc_motor(
         Time of the load step, s.
     x0 : (float, float)
         Initial angle (rad) and speed (rad/s).
+    load_step : float
+        A further load torque from ``t_step`` on, N m (a second smooth step).
+    t_step : float
+        Time of the further step, s.
     """
     for label, v in (("J", J), ("K", K), ("R", R)):
         if not v > 0:
@@ -152,18 +158,22 @@ def dc_motor(
     damp = b / J + K * K / (J * R)
 
     def f2(x: Any, t: Any) -> Any:
-        return -damp * x[1] - load * smooth_step(t, t_load, 0.005) / J
+        torque = load * smooth_step(t, t_load, 0.005)
+        if load_step:
+            torque = torque + load_step * smooth_step(t, t_step, 0.005)
+        return -damp * x[1] - torque / J
 
     return PhysicalPlant(
         g=[lambda x, t: 1.0, lambda x, t: gain],
         f=[lambda x, t: 0.0 * x[0], f2],
         x0=x0,
         name="dc-motor",
-        params={"J": J, "b": b, "K": K, "R": R, "load": load, "t_load": t_load},
+        params={"J": J, "b": b, "K": K, "R": R, "load": load, "t_load": t_load,
+                "load_step": load_step, "t_step": t_step},
         output=("angle", "rad"),
         input=("voltage", "V"),
         gain=gain,
-        hold=abs(load) * R / K,
+        hold=max(abs(load), abs(load + load_step)) * R / K,
     )
 
 

@@ -1,0 +1,157 @@
+"""Whether a closed-loop run meets a requirement: the one check :func:`tune` and the
+worked examples use.
+
+A run meets ``(eps, settle_time, u_limits)`` when
+
+1. it settles: ``|e| < eps`` from some time ``t_s <= settle_time`` to the end;
+2. the steady error stays below ``eps`` (the same statement, measured as the
+   largest ``|e|`` after ``t_s``);
+3. the flexible bounds never expand after ``t_s`` while the actuator has
+   headroom (``v`` inside the limits): the preset accuracy was not given up;
+4. the input's ripple after ``t_s`` (peak-to-peak) is at most ``ripple_limit``
+   of the input range (5 % by default).
+
+>>> import famcc
+>>> plant = famcc.plants.dc_motor(load=0.0)
+>>> d = famcc.design(2, 1e-3, u_limits=(-12, 12), eps=0.02, settle_time=2.0,
+...                  hold_input=0.5, gain=25.0, integral=False)
+>>> res = famcc.simulate(plant, d.controller(), 3.0, reference=famcc.Constant(1.0),
+...                      u_limits=(-12.0, 12.0))
+>>> a = famcc.tuning.assess(res, eps=0.02, settle_time=2.0, u_limits=(-12.0, 12.0))
+>>> a.ok, round(a.settling_time, 2), a.ripple < 0.05
+(True, 0.81, True)
+>>> famcc.tuning.assess(res, eps=0.02, settle_time=0.5, u_limits=(-12.0, 12.0)).failures
+['settled at 0.808 s > 0.5 s']
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+#: The largest ripple of ``u`` after settling, as a fraction of the input range.
+RIPPLE_LIMIT = 0.05
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """A run judged against a requirement.
+
+    Attributes
+    ----------
+    settling_time : float or None
+        First time after which ``|e| < eps`` holds to the end, s (None: never).
+    steady_error : float
+        Largest ``|e|`` after settling (over the last 10 % of the run when it
+        never settled), output units.
+    expanded_unsaturated : float
+        Fraction of the samples after settling with the bounds expanded while
+        ``v`` lay inside the limits.
+    ripple : float
+        Peak-to-peak of ``u`` after settling, as a fraction of the input range
+        (over the last 10 % when it never settled).
+    effort : float
+        Total variation of ``u`` per second over the run, input units/s.
+    saturated : float
+        Fraction of samples with ``v`` beyond the limits.
+    failures : list of str
+        The requirements that failed, in words (empty when all hold).
+    """
+
+    settling_time: float | None
+    steady_error: float
+    expanded_unsaturated: float
+    ripple: float
+    effort: float
+    saturated: float
+    failures: list[str] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        """True when every requirement held."""
+        return not self.failures
+
+    def metrics(self) -> dict[str, Any]:
+        """The measured numbers as a dict."""
+        return {
+            "settling_time": self.settling_time,
+            "steady_error": self.steady_error,
+            "expanded_unsaturated": self.expanded_unsaturated,
+            "ripple": self.ripple,
+            "effort": self.effort,
+            "saturated": self.saturated,
+        }
+
+    def __str__(self) -> str:
+        ts = "never" if self.settling_time is None else f"{self.settling_time:.3f} s"
+        head = "requirement met" if self.ok else "requirement NOT met: " + "; ".join(self.failures)
+        return (
+            f"settling time {ts}, steady max |e| {self.steady_error:.3g}, expanded with "
+            f"headroom {100 * self.expanded_unsaturated:.3g} %, u ripple "
+            f"{100 * self.ripple:.3g} % of the range, saturated {100 * self.saturated:.3g} %: "
+            + head
+        )
+
+
+def assess(
+    result: Any,
+    *,
+    eps: float,
+    settle_time: float,
+    u_limits: Sequence[float],
+    ripple_limit: float = RIPPLE_LIMIT,
+) -> Assessment:
+    """Judge a :class:`famcc.SimResult` against ``(eps, settle_time, u_limits)``.
+
+    Parameters
+    ----------
+    result : famcc.SimResult
+        A run with diagnostics recorded (``expanded``); None counts as diverged.
+    eps : float
+        Required accuracy, output units (> 0).
+    settle_time : float
+        Required settling time, s.
+    u_limits : (lo, hi)
+        The actuator's limits, input units.
+    ripple_limit : float
+        Largest ripple of ``u`` after settling, fraction of ``hi - lo``.
+    """
+    lo, hi = (float(v) for v in u_limits)
+    if not (eps > 0 and math.isfinite(eps)):
+        raise ValueError(f"eps must be a finite number > 0, got {eps!r}")
+    if not hi > lo:
+        raise ValueError(f"u_limits must be (lo, hi) with lo < hi, got {tuple(u_limits)!r}")
+    if result is None:
+        return Assessment(None, math.inf, 0.0, math.inf, math.inf, 0.0, ["diverged"])
+    t = np.asarray(result.t)
+    z1 = np.asarray(result.z1)
+    u = np.asarray(result.u)
+    ts = result.settling_time(eps)
+    after = t >= (ts if ts is not None else 0.9 * float(t[-1]))
+    expanded = result.expanded
+    exp_unsat = (
+        float(np.mean((np.asarray(expanded, dtype=bool) & ~result.saturated)[after]))
+        if expanded is not None and np.any(after)
+        else 0.0
+    )
+    steady = float(np.max(np.abs(z1[after]))) if np.any(after) else math.inf
+    ripple = float(np.ptp(u[after])) / (hi - lo) if np.any(after) else math.inf
+    effort = float(np.sum(np.abs(np.diff(u))) / max(float(t[-1]), 1e-300))
+    failures = []
+    if ts is None:
+        failures.append("never settled")
+    elif ts > settle_time:
+        failures.append(f"settled at {ts:.3g} s > {settle_time:g} s")
+    if not steady < eps:
+        failures.append(f"steady |e| {steady:.3g} >= eps {eps:g}")
+    if exp_unsat > 0:
+        failures.append(f"bounds expanded with headroom {100 * exp_unsat:.2g} % of the time")
+    if ripple > ripple_limit:
+        failures.append(f"u ripple {100 * ripple:.3g} % > {100 * ripple_limit:g} % of the range")
+    return Assessment(
+        ts, steady, exp_unsat, ripple, effort, float(result.saturated_fraction), failures
+    )

@@ -1,0 +1,280 @@
+"""Tuning by simulation: :func:`tune` refines a :func:`design` on the user's plant."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Sequence
+from typing import Any
+
+from famcc._common import DesignWarning
+from famcc.tuning.assess import assess
+from famcc.tuning.rules import Design, Finding, Trial, design
+
+#: The search grid of :func:`tune`: phase budgets (rad), envelope fractions of
+#: the settling time, and differentiator time constants in samples.
+BUDGETS = (0.5, 0.65, 0.8, 1.0, 1.2)
+FRACTIONS = (0.3, 0.5, 0.7)
+MU_SAMPLES = (10.0, 15.0, 22.0)
+
+
+def _measure_plant(plant: Any, result: Any) -> tuple[float, float]:
+    """``(max |G|, max |F/G|)`` along a run (after its first half, for ``F/G``)."""
+    import numpy as np
+
+    gains = []
+    for k in range(0, len(result.t), max(1, len(result.t) // 400)):
+        try:
+            g, _ = plant.gain_and_drift(float(result.t[k]), result.x[k])
+        except NotImplementedError:
+            break
+        gains.append(abs(float(g)))
+    negfg = result.neg_f_over_g
+    late = np.asarray(result.t) >= 0.5 * float(result.t[-1])
+    hold = float(np.nanmax(np.abs(negfg[late]))) if negfg is not None else math.nan
+    return (max(gains) if gains else math.nan), hold
+
+
+class _Lean:
+    """A plant seen without its exact output derivatives: tuning runs need only
+    ``z1`` (the error), not the true error vector, and skip the jets."""
+
+    def __init__(self, plant: Any) -> None:
+        self._plant = plant
+        self.order, self.x0 = plant.order, plant.x0
+        self.rhs = plant.rhs
+        fast = getattr(plant, "rhs_fast", None)
+        if fast is not None:
+            self.rhs_fast = fast
+
+    def output_derivatives(self, t: float, x: Any) -> Any:
+        raise NotImplementedError("not needed for tuning")
+
+    def gain_and_drift(self, t: float, x: Any) -> Any:
+        raise NotImplementedError("not needed for tuning")
+
+
+def _derivatives_only(reference: Any, order: int) -> Any:
+    """``y_d .. y_d^(n-1)`` as a sequence of callables: enough for the loop, and
+    the simulator then skips ``-F/G``."""
+    if isinstance(reference, (list, tuple)):
+        return list(reference)[:order]
+    return [(lambda t, k=k: reference(t, k)) for k in range(order)]
+
+
+class _Noisy:
+    """A controller seen through seeded white measurement noise on ``e``."""
+
+    def __init__(self, ctrl: Any, std: float, seed: int) -> None:
+        import numpy as np
+
+        self.ctrl, self.std = ctrl, std
+        self.rng = np.random.default_rng(seed)
+        self.dt, self.order = ctrl.dt, ctrl.order
+
+    def step(self, e: float, applied: float | None = None) -> float:
+        return float(
+            self.ctrl.step(e + self.std * float(self.rng.standard_normal()), applied=applied)
+        )
+
+    @property
+    def diagnostics(self) -> Any:
+        return self.ctrl.diagnostics
+
+
+def tune(
+    plant: Any,
+    *,
+    dt: float,
+    u_limits: Sequence[float],
+    eps: float,
+    settle_time: float,
+    reference: Any = None,
+    noise_std: float = 0.0,
+    t_end: float | None = None,
+    hold_input: float | None = None,
+    gain: float | None = None,
+    integral: bool | None = None,
+    seed: int = 0,
+    progress: bool = True,
+) -> Design:
+    """A design that meets the requirements on ``plant``, found by simulation.
+
+    It starts from :func:`design`, measures the input gain ``G`` and the hold
+    input ``|F/G|`` on the plant (from ``plant.gain_and_drift`` along a first
+    closed-loop run, unless given, or read from a :class:`famcc.plants.PhysicalPlant`),
+    then simulates a grid of candidates (phase budget x envelope fraction x
+    differentiator speed) and keeps the feasible one with the least control
+    effort (total variation of ``u``) and ripple. A candidate is feasible when
+    it settles to ``eps`` within ``settle_time``, the error stays below ``eps``
+    to the end, the bounds never expand while the actuator has headroom after
+    settling, and the input's ripple over the last stretch is at most 5 % of the
+    input range.
+
+    Parameters
+    ----------
+    plant : famcc.plants.Plant
+        Any plant :func:`famcc.simulate` takes; ``gain_and_drift`` is needed
+        unless ``gain`` and ``hold_input`` are given.
+    dt, u_limits, eps, settle_time, noise_std
+        As for :func:`design`.
+    reference : optional
+        As for :func:`famcc.simulate` (default: hold the initial output,
+        ``famcc.Constant(y(0))``).
+    t_end : float, optional
+        Horizon of each run (default ``2 settle_time + 1`` s).
+    hold_input, gain : float, optional
+        Override the measured values.
+    integral : bool, optional
+        As for :func:`design`.
+    seed : int
+        Seed of the measurement noise.
+    progress : bool
+        Show a progress bar on stderr.
+
+    Returns
+    -------
+    Design
+        With ``trials`` (every :class:`Trial`, in order) and ``choice`` (why this
+        one) set; its ``checks`` gain a finding ``tune`` that fails when no
+        candidate met every requirement.
+    """
+    import numpy as np
+
+    import famcc
+    from famcc.reporting import Progress
+    from famcc.simulation import Constant
+
+    lo, hi = (float(v) for v in u_limits)
+    horizon = float(t_end) if t_end is not None else 2.0 * float(settle_time) + 1.0
+    if reference is None:
+        reference = Constant(float(np.asarray(plant.x0, dtype=float)[0]))
+    order = int(plant.order)
+
+    lean, lean_ref = _Lean(plant), _derivatives_only(reference, order)
+
+    def run(d: Design, measure: bool = False) -> Any:
+        ctrl = d.controller()
+        if noise_std:
+            ctrl = _Noisy(ctrl, noise_std, seed)
+        try:
+            if measure:  # the first run measures G and -F/G along the trajectory
+                return famcc.simulate(plant, ctrl, horizon, reference=reference, u_limits=(lo, hi))
+            return famcc.simulate(lean, ctrl, horizon, reference=lean_ref, u_limits=(lo, hi))
+        except (FloatingPointError, ValueError, OverflowError):
+            return None
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DesignWarning)
+        g = gain if gain is not None else getattr(plant, "gain", None)
+        h = (
+            hold_input
+            if hold_input is not None
+            else (plant.hold_input() if hasattr(plant, "hold_input") else None)
+        )
+        if g is None or h is None:
+            try:
+                g0, _ = plant.gain_and_drift(0.0, np.asarray(plant.x0, dtype=float))
+            except NotImplementedError as exc:
+                raise famcc.ConfigError(
+                    f"tune needs gain= and hold_input= for a plant without gain_and_drift ({exc})"
+                ) from exc
+            first = design(
+                order,
+                dt,
+                u_limits=(lo, hi),
+                eps=eps,
+                settle_time=settle_time,
+                hold_input=h if h is not None else 0.0,
+                gain=abs(g0) * 1.5,
+                noise_std=noise_std,
+                integral=integral,
+            )
+            res = run(first, measure=True)
+            gm, hm = _measure_plant(plant, res) if res is not None else (math.nan, math.nan)
+            g = g if g is not None else 1.2 * (gm if math.isfinite(gm) else abs(g0) * 1.5)
+            h = h if h is not None else 1.2 * (hm if math.isfinite(hm) else 0.0)
+    knobs = [(b, f, m) for b in BUDGETS for f in FRACTIONS for m in MU_SAMPLES[:1]]
+    bar = Progress(len(knobs) + 2 * (len(MU_SAMPLES) - 1), "famcc.tune") if progress else None
+    trials: list[tuple[Trial, Design]] = []
+
+    def attempt(b: float, f: float, m: float) -> None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DesignWarning)
+            d = design(
+                order,
+                dt,
+                u_limits=(lo, hi),
+                eps=eps,
+                settle_time=settle_time,
+                hold_input=float(h),
+                gain=float(g),
+                noise_std=noise_std,
+                integral=integral,
+                phase_budget=b,
+                settle_fraction=f,
+                mu_per_dt=m,
+            )
+        res = run(d)
+        trial = _judge(
+            res,
+            {"phase_budget": b, "settle_fraction": f, "mu_per_dt": m},
+            eps,
+            settle_time,
+            (lo, hi),
+        )
+        trials.append((trial, d))
+        if bar is not None:
+            bar.step(
+                f"B={b:g} T_s={f:g} mu={m:g}dt: " + ("ok" if trial.feasible else trial.reason[:40])
+            )
+
+    for b, f, m in knobs:
+        attempt(b, f, m)
+    ranked = sorted(trials, key=lambda td: _score(td[0]))
+    for trial, _ in ranked[:2]:
+        for m in MU_SAMPLES[1:]:
+            attempt(trial.knobs["phase_budget"], trial.knobs["settle_fraction"], m)
+    best_trial, best = min(trials, key=lambda td: _score(td[0]))
+    feasible = [t for t, _ in trials if t.feasible]
+    why = (
+        f"{len(feasible)} of {len(trials)} candidates met every requirement; chose the "
+        f"one with the least effort (total variation of u {best_trial.metrics['effort']:.3g}"
+        f"/s, ripple {100 * best_trial.metrics['ripple']:.2f} % of the range)"
+        if best_trial.feasible
+        else f"no candidate of {len(trials)} met every requirement; chose the closest: "
+        f"{best_trial.reason}"
+    )
+    finding = Finding(
+        "tune",
+        "ok" if best_trial.feasible else "fail",
+        "a simulated candidate meets every requirement",
+        float(len(feasible)),
+        float(len(trials)),
+        math.nan,
+        why,
+    )
+    if not best_trial.feasible:
+        warnings.warn(f"famcc.tune: {why}", DesignWarning, stacklevel=2)
+    return Design(
+        {**best.requirements, "measured_gain": g, "measured_hold_input": h},
+        best.parameters,
+        (*best.checks, finding),
+        tuple(t for t, _ in trials),
+        why,
+    )
+
+
+def _judge(
+    res: Any, knobs: dict[str, float], eps: float, settle_time: float, limits: tuple[float, float]
+) -> Trial:
+    a = assess(res, eps=eps, settle_time=settle_time, u_limits=limits)
+    return Trial(knobs, a.metrics(), a.ok, "; ".join(a.failures))
+
+
+def _score(t: Trial) -> tuple[int, float]:
+    """Feasible first; then the least effort plus a ripple penalty."""
+    if t.feasible:
+        return (0, t.metrics["effort"] * (1.0 + 10.0 * t.metrics["ripple"]))
+    n_bad = t.reason.count(";") + 1
+    return (n_bad, t.metrics.get("effort", math.inf))
