@@ -13,15 +13,20 @@ import numpy as np
 from famcc.interop import to_nlsys
 
 dt = 1e-3
-ctrl = famcc.Controller(2, dt, famcc.FiniteTime(k=1.0, p=0.5),
-                        constraint="lateral", eps=0.1, k_u=5.0)
+ctrl = famcc.Controller(
+    2, dt, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral", eps=0.1, k_u=5.0
+)
 
 plant = control.c2d(control.ss([[0, 1], [-1, -0.5]], [[0], [2]], [[1, 0]], 0), dt)
 plant = control.ss(plant, inputs="u", outputs="y", states=["x1", "x2"], name="plant")
 error = control.summing_junction(inputs=["y", "-r"], output="e", name="error")
 closed = control.interconnect(
     [plant, error, to_nlsys(ctrl, inputs="e", outputs="u")],
-    inplist="r", outlist=["y", "u"], dt=dt, name="closed loop")
+    inplist="r",
+    outlist=["y", "u"],
+    dt=dt,
+    name="closed loop",
+)
 
 t = np.arange(0.0, 2.5 + dt / 2, dt)
 x0 = np.concatenate(([-1.0, 0.0], ctrl.state()))
