@@ -404,7 +404,7 @@ def test_rates_worst_cases_and_exports(tmp_path, monkeypatch):
             raise ImportError(f"No module named {name!r}")
         return real(name, *a, **k)
 
-    monkeypatch.setattr(campaigns.importlib, "import_module", missing)
+    monkeypatch.setattr(importlib, "import_module", missing)
     with pytest.raises(ImportError, match="needs pandas.*pip install pandas"):
         res.to_dataframe()
     with pytest.raises(ImportError, match="needs pyarrow.*pip install pyarrow"):

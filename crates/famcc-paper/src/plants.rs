@@ -17,7 +17,7 @@
 //! ```
 //! use famcc_paper::plants::{self, Clock, Plant, SecondOrder};
 //! use famcc_paper::Variant;
-//! let p = SecondOrder(Variant::Paper);
+//! let p = SecondOrder::new(Variant::Paper);
 //! let x = p.x0();
 //! let y = plants::output_derivatives(&p, 0.0_f64, &x);
 //! assert_eq!(y[0], -1.0);
