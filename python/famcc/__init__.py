@@ -23,7 +23,7 @@ family (:mod:`famcc.campaigns`) and judges every case.
 """
 
 from famcc import bounds, envelope, plants, scenarios, transition
-from famcc._common import DefaultReferenceWarning, FamccWarning, Signal
+from famcc._common import DefaultReferenceWarning, DesignWarning, FamccWarning, Signal
 from famcc._core import (
     MAX_ORDER,
     ConfigError,
@@ -47,7 +47,7 @@ from famcc._core import (
 from famcc.campaigns import CampaignResult, campaign
 from famcc.reporting import report, reproduce
 from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
-from famcc.tuning import Design, DesignWarning, Finding, design, tune
+from famcc.tuning import Design, Finding, design, tune
 
 __all__ = [
     "MAX_ORDER",

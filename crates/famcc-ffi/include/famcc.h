@@ -593,6 +593,39 @@ typedef struct FamccConfig_f32 {
    * Estimate limits (> 0, infinity allowed).
    */
   float estimate_limits[FAMCC_MAX_ORDER];
+  /**
+   * Nonzero: integral action (docs/design.md §3.8). The controller's
+   * order is then the law's, the plant's + 1: an order-3 controller for
+   * an order-2 plant, with `stages[0..2]`, the differentiator of the
+   * plant's order in `a[0..order-1]`, and the arrays above in the law's
+   * coordinates (slot 0 the integral: `initial_derivatives[2..order]` are
+   * the plant's `z2..zn`, `estimate_limits[0]` is ignored).
+   */
+  uint32_t integral;
+  /**
+   * Nonzero: limit the output to `[output_limits[0], output_limits[1]]`.
+   */
+  uint32_t has_output_limits;
+  /**
+   * Output magnitude limits `lo < hi` (infinite ends allowed).
+   */
+  float output_limits[2];
+  /**
+   * Nonzero: limit the output's rate to `rate_limit` units per second.
+   */
+  uint32_t has_rate_limit;
+  /**
+   * Output rate limit (> 0), units per second.
+   */
+  float rate_limit;
+  /**
+   * Nonzero: bumpless start, the first output is `initial_output` when feasible.
+   */
+  uint32_t has_initial_output;
+  /**
+   * The output the first step starts from.
+   */
+  float initial_output;
 } FamccConfig_f32;
 
 /**
@@ -877,6 +910,39 @@ typedef struct FamccConfig_f64 {
    * Estimate limits (> 0, infinity allowed).
    */
   double estimate_limits[FAMCC_MAX_ORDER];
+  /**
+   * Nonzero: integral action (docs/design.md §3.8). The controller's
+   * order is then the law's, the plant's + 1: an order-3 controller for
+   * an order-2 plant, with `stages[0..2]`, the differentiator of the
+   * plant's order in `a[0..order-1]`, and the arrays above in the law's
+   * coordinates (slot 0 the integral: `initial_derivatives[2..order]` are
+   * the plant's `z2..zn`, `estimate_limits[0]` is ignored).
+   */
+  uint32_t integral;
+  /**
+   * Nonzero: limit the output to `[output_limits[0], output_limits[1]]`.
+   */
+  uint32_t has_output_limits;
+  /**
+   * Output magnitude limits `lo < hi` (infinite ends allowed).
+   */
+  double output_limits[2];
+  /**
+   * Nonzero: limit the output's rate to `rate_limit` units per second.
+   */
+  uint32_t has_rate_limit;
+  /**
+   * Output rate limit (> 0), units per second.
+   */
+  double rate_limit;
+  /**
+   * Nonzero: bumpless start, the first output is `initial_output` when feasible.
+   */
+  uint32_t has_initial_output;
+  /**
+   * The output the first step starts from.
+   */
+  double initial_output;
 } FamccConfig_f64;
 
 /**
@@ -979,9 +1045,30 @@ typedef struct FamccDiagnostics_f32 {
    */
   uint64_t clamp_count;
   /**
-   * The output `v`.
+   * The output `v` (after the output limits, when configured).
    */
   float v;
+  /**
+   * The law's output before the output limits.
+   */
+  float v_unlimited;
+  /**
+   * Nonzero with integral action (then `integral` is valid).
+   */
+  uint32_t has_integral;
+  /**
+   * Nonzero when the last step added its sample to the integral.
+   */
+  uint32_t integrating;
+  /**
+   * The integral of the error the output used.
+   */
+  float integral;
+  /**
+   * Steps at which the bounds expanded while the actuator was known to
+   * have headroom (output limits set or `*_step_applied` used).
+   */
+  uint64_t unsaturated_expansions;
 } FamccDiagnostics_f32;
 
 /**
@@ -1066,9 +1153,30 @@ typedef struct FamccDiagnostics_f64 {
    */
   uint64_t clamp_count;
   /**
-   * The output `v`.
+   * The output `v` (after the output limits, when configured).
    */
   double v;
+  /**
+   * The law's output before the output limits.
+   */
+  double v_unlimited;
+  /**
+   * Nonzero with integral action (then `integral` is valid).
+   */
+  uint32_t has_integral;
+  /**
+   * Nonzero when the last step added its sample to the integral.
+   */
+  uint32_t integrating;
+  /**
+   * The integral of the error the output used.
+   */
+  double integral;
+  /**
+   * Steps at which the bounds expanded while the actuator was known to
+   * have headroom (output limits set or `*_step_applied` used).
+   */
+  uint64_t unsaturated_expansions;
 } FamccDiagnostics_f64;
 
 /**

@@ -31,6 +31,10 @@ pub struct ConfigBuilder<T, const N: usize> {
     differentiator: Option<HighGain<T, N>>,
     initial_derivatives: Option<[T; N]>,
     estimate_limits: Option<[T; N]>,
+    integral: bool,
+    output_limits: Option<(T, T)>,
+    rate_limit: Option<T>,
+    initial_output: Option<T>,
 }
 
 impl<T: Real, const N: usize> Config<T, N> {
@@ -40,7 +44,8 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// Everything else starts at the paper's choice: `k0 = 2`, `T_s = 1` s,
     /// log Gamma, `rho_e` = [`Constraint::default_rho_e`], the exponential
     /// transition, the paper's latch, no differentiator (state feedback),
-    /// zero initial derivatives, no estimate limits.
+    /// zero initial derivatives, no estimate limits, no integral action, no
+    /// output limits, no bumpless start.
     pub fn builder(
         dt: T,
         laws: &[(Feedback<T>, Option<Skew<T>>)],
@@ -64,6 +69,10 @@ impl<T: Real, const N: usize> Config<T, N> {
             differentiator: None,
             initial_derivatives: None,
             estimate_limits: None,
+            integral: false,
+            output_limits: None,
+            rate_limit: None,
+            initial_output: None,
         }
     }
 
@@ -88,6 +97,10 @@ impl<T: Real, const N: usize> Config<T, N> {
             differentiator: self.differentiator,
             initial_derivatives: self.initial_derivatives,
             estimate_limits: self.estimate_limits,
+            integral: self.integral,
+            output_limits: self.output_limits,
+            rate_limit: self.rate_limit,
+            initial_output: self.initial_output,
         }
     }
 }
@@ -167,6 +180,36 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         self
     }
 
+    /// Integral action (default off; docs/design.md §3.8): the law of order
+    /// `N` acts on `(I, e, e', ..., e^(N-2))` for a plant of order `N - 1`,
+    /// `I` the integral of the measured error (with integral separation).
+    /// The stage laws are the `N - 1` of the order-`N` law; the
+    /// differentiator runs at order `N - 1` on `e` (its leading `N - 1`
+    /// coefficients are used).
+    pub fn integral(mut self, on: bool) -> Self {
+        self.integral = on;
+        self
+    }
+
+    /// Magnitude limits `(lo, hi)` of the output, `lo < hi` (infinite ends
+    /// allowed); `step` returns the limited output (default none).
+    pub fn output_limits(mut self, limits: Option<(T, T)>) -> Self {
+        self.output_limits = limits;
+        self
+    }
+
+    /// Rate limit of the output, output units per second, `> 0` (default none).
+    pub fn rate_limit(mut self, rate: Option<T>) -> Self {
+        self.rate_limit = rate;
+        self
+    }
+
+    /// The output the first step starts from (bumpless start; default none).
+    pub fn initial_output(mut self, u0: Option<T>) -> Self {
+        self.initial_output = u0;
+        self
+    }
+
     /// Checks every rule (the error names the parameter and the rule, and
     /// the stage for per-stage values) and discretizes the differentiator.
     pub fn build(&self) -> Result<Config<T, N>, ConfigError> {
@@ -209,8 +252,15 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
                 .at_stage(i));
             }
         }
+        if self.integral && N < 2 {
+            return Err(ConfigError::new(
+                "integral",
+                "needs a law of order N >= 2 (N = the plant's order + 1)",
+            ));
+        }
+        let plant_order = N - usize::from(self.integral);
         if let Some(h) = &self.differentiator {
-            h.validate()?;
+            h.validate_order(plant_order)?;
         }
         if let Some(d) = &self.initial_derivatives {
             if d.iter().any(|v| !v.is_finite()) {
@@ -220,10 +270,34 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         if let Some(l) = &self.estimate_limits {
             check_estimate_limits(l)?;
         }
+        if let Some((lo, hi)) = self.output_limits {
+            if lo.partial_cmp(&hi) != Some(core::cmp::Ordering::Less) {
+                return Err(ConfigError::new(
+                    "output_limits",
+                    "must be a pair lo < hi (infinite ends allowed, NaN not)",
+                ));
+            }
+        }
+        if let Some(r) = self.rate_limit {
+            positive(r, "rate_limit")?;
+        }
+        if self.initial_output.is_some_and(|u| !u.is_finite()) {
+            return Err(ConfigError::new("initial_output", "must be finite"));
+        }
         let hgd = match &self.differentiator {
-            Some(h) => Some(h.discretize(self.dt)?),
+            Some(h) => Some(h.discretize_order(self.dt, plant_order)?),
             None => None,
         };
+        if hgd
+            .as_ref()
+            .is_some_and(|d| d.spectral_radius().partial_cmp(&1.0) != Some(core::cmp::Ordering::Less))
+        {
+            return Err(ConfigError::new(
+                "dt",
+                "gives an unstable discretized differentiator (spectral radius of Phi >= 1): lower dt, \
+                 raise mu or use discretization exact or tustin",
+            ));
+        }
         Ok(Config {
             dt: self.dt,
             laws,
@@ -239,6 +313,10 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
             hgd,
             initial_derivatives: self.initial_derivatives,
             estimate_limits: self.estimate_limits,
+            integral: self.integral,
+            output_limits: self.output_limits,
+            rate_limit: self.rate_limit,
+            initial_output: self.initial_output,
         })
     }
 }

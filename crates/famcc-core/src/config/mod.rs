@@ -27,8 +27,10 @@
 //! ```
 
 mod builder;
+mod lint;
 
 pub use builder::ConfigBuilder;
+pub use lint::{Finding, Findings, Lint, Suggestion, LINT_COUNT};
 
 use crate::differentiator::DiscreteHgd;
 use crate::error::ConfigError;
@@ -109,6 +111,10 @@ pub struct Config<T, const N: usize> {
     hgd: Option<DiscreteHgd<T, N>>,
     initial_derivatives: Option<[T; N]>,
     estimate_limits: Option<[T; N]>,
+    integral: bool,
+    output_limits: Option<(T, T)>,
+    rate_limit: Option<T>,
+    initial_output: Option<T>,
 }
 
 impl<T: Real, const N: usize> Config<T, N> {
@@ -179,15 +185,62 @@ impl<T: Real, const N: usize> Config<T, N> {
         self.hgd.as_ref()
     }
 
-    /// Initial derivative estimates `(z2, ..., zn)` in slots `1..N` (slot 0
-    /// is ignored: the first sample is used); `None` means zeros.
+    /// Initial derivative estimates `(z2, ..., zn)` in slots `offset + 1..N`
+    /// ([`Config::estimate_offset`]; the slots before are ignored: the first
+    /// sample and, with integral action, the integral); `None` means zeros.
     pub fn initial_derivatives(&self) -> Option<&[T; N]> {
         self.initial_derivatives.as_ref()
     }
 
     /// The saturation `|z_hat_i| <= limit_i` of the estimates fed to the law
-    /// (docs/design.md §3.8), if any.
+    /// (docs/design.md §3.8), if any. With integral action slot 0 (the
+    /// integral) is not limited.
     pub fn estimate_limits(&self) -> Option<&[T; N]> {
         self.estimate_limits.as_ref()
+    }
+
+    /// Integral action (docs/design.md §3.8): the law of order `N` acts on
+    /// `Z = (I, e, e', ..., e^(N-2))`, `I` the integral of the measured error,
+    /// for a plant of order `N - 1`.
+    pub fn integral(&self) -> bool {
+        self.integral
+    }
+
+    /// The plant's order: `N`, or `N - 1` with integral action.
+    pub fn plant_order(&self) -> usize {
+        N - self.estimate_offset()
+    }
+
+    /// The slot of `e` in the law's vector `Z`: 0, or 1 with integral action
+    /// (slot 0 then holds the integral). Every `N`-sized array about the
+    /// plant (estimate, initial derivatives, estimate limits, the state of
+    /// `step_state`) is laid out in the law's coordinates: the plant's
+    /// `(z1, ..., zn)` in slots `offset..N`.
+    pub fn estimate_offset(&self) -> usize {
+        usize::from(self.integral)
+    }
+
+    /// The magnitude limits `(lo, hi)` of the output (`step` returns the
+    /// limited output), if any.
+    pub fn output_limits(&self) -> Option<(T, T)> {
+        self.output_limits
+    }
+
+    /// The rate limit of the output, output units per second, if any.
+    pub fn rate_limit(&self) -> Option<T> {
+        self.rate_limit
+    }
+
+    /// The output the first step starts from (bumpless start), if any.
+    pub fn initial_output(&self) -> Option<T> {
+        self.initial_output
+    }
+
+    /// The differentiator of [`Config::differentiator`] discretized for a
+    /// one-off period `dt` (order [`Config::plant_order`]).
+    pub fn discretize_at(&self, dt: T) -> Option<Result<DiscreteHgd<T, N>, ConfigError>> {
+        self.differentiator
+            .as_ref()
+            .map(|h| h.discretize_order(dt, self.plant_order()))
     }
 }

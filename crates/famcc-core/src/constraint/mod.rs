@@ -33,7 +33,7 @@ mod root;
 
 pub use flexible::expansion;
 pub use offset::{inverse, Offset};
-pub use root::{decreasing_root, BRACKET_ITERATIONS, ROOT_ITERATIONS};
+pub use root::{bracketed_root, decreasing_root, BRACKET_ITERATIONS, ROOT_ITERATIONS};
 
 use crate::error::{positive, ConfigError};
 use crate::manifold::Manifold;

@@ -1,7 +1,8 @@
 //! The root search of the constraint geometry: `h_v = h^{-1}` (LaMC,
 //! eq. (28)) and the intersection `x_c` of eq. (27) (OMC) are roots of
 //! strictly decreasing functions, so a bracketing search always finds the
-//! unique root and always terminates.
+//! unique root and always terminates. [`bracketed_root`] refines a root
+//! already bracketed (the controller's bumpless start).
 
 use crate::Real;
 
@@ -61,6 +62,40 @@ pub fn decreasing_root<T: Real>(f: impl Fn(T) -> T, x0: T) -> T {
     if !bracketed {
         return a;
     }
+    refine(&f, a, fa, b, fb)
+}
+
+/// The root of a continuous `f` between `lo` and `hi` when `f(lo)` and
+/// `f(hi)` are finite and differ in sign (either may be the larger); `None`
+/// otherwise (no sign change: the caller chooses what is nearest). Refined
+/// as [`decreasing_root`]'s phase 2 (Illinois regula falsi with a bisection
+/// fallback, at most [`ROOT_ITERATIONS`] steps), so it always terminates.
+///
+/// ```
+/// use famcc_core::constraint::bracketed_root;
+/// let r = bracketed_root(|x: f64| x * x - 2.0, 0.0, 4.0).unwrap();
+/// assert!((r - 2.0_f64.sqrt()).abs() < 1e-15);
+/// assert_eq!(bracketed_root(|x: f64| x * x + 1.0, -1.0, 1.0), None);
+/// ```
+pub fn bracketed_root<T: Real>(f: impl Fn(T) -> T, lo: T, hi: T) -> Option<T> {
+    let (fa, fb) = (f(lo), f(hi));
+    if !(fa.is_finite() && fb.is_finite()) {
+        return None;
+    }
+    if fa == T::zero() {
+        return Some(lo);
+    }
+    if fb == T::zero() {
+        return Some(hi);
+    }
+    if (fa > T::zero()) == (fb > T::zero()) {
+        return None;
+    }
+    Some(refine(&f, lo, fa, hi, fb))
+}
+
+/// Phase 2 of the root searches: `f(a)` and `f(b)` differ in sign.
+fn refine<T: Real>(f: &impl Fn(T) -> T, mut a: T, mut fa: T, mut b: T, mut fb: T) -> T {
     let four_eps = T::from_f64(4.0) * T::epsilon();
     let mut side = 0i8;
     for _ in 0..ROOT_ITERATIONS {

@@ -24,7 +24,9 @@ pub struct Diagnostics<T, const N: usize> {
     pub bounds: (T, T),
     /// Nominal upper bounds `(x_U, y_U)`.
     pub nominal_bounds: (T, T),
-    /// The estimate the output was computed from (after optional saturation).
+    /// The vector the output was computed from (the estimate after the
+    /// optional saturation), in the law's coordinates: with integral action
+    /// `(I, z_hat_1, ..., z_hat_n)`.
     pub z_hat: [T; N],
     /// True when the flexible boundary was expanded.
     pub expanded: bool,
@@ -35,8 +37,22 @@ pub struct Diagnostics<T, const N: usize> {
     pub saturation_gap: Option<T>,
     /// Number of steps at which `|xi|` had to be clamped below 1.
     pub clamp_count: u64,
-    /// The output `v`.
+    /// The output returned (after the output limits, when configured).
     pub v: T,
+    /// The law's output `v = -k_u Gamma(xi)` before the output limits
+    /// (equal to `v` without them).
+    pub v_unlimited: T,
+    /// The integral `I` the output used (integral action), `None` without.
+    pub integral: Option<T>,
+    /// True when this step integrated its sample into `I` (false while the
+    /// integral separation froze it, and without integral action).
+    pub integrating: bool,
+    /// Steps so far at which the bounds were expanded while the actuator
+    /// was known to have headroom (output limits configured, or `applied`
+    /// passed, and the law's output within them). Nonzero means the preset
+    /// accuracy was given up without saturation: `k_u` too small for the
+    /// plant, or `rho_e` too large. Saturating at `u64::MAX`.
+    pub unsaturated_expansions: u64,
 }
 
 impl<T: Real, const N: usize> Default for Diagnostics<T, N> {
@@ -58,6 +74,10 @@ impl<T: Real, const N: usize> Default for Diagnostics<T, N> {
             saturation_gap: None,
             clamp_count: 0,
             v: z,
+            v_unlimited: z,
+            integral: None,
+            integrating: false,
+            unsaturated_expansions: 0,
         }
     }
 }

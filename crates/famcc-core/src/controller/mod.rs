@@ -11,6 +11,17 @@
 //! 3. the estimate advances, `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` (eq. (34)
 //!    discretized at construction).
 //!
+//! Options beyond the paper (docs/design.md §3.8), all off by default (then
+//! every output is bit-identical to the paper's law): integral action (the
+//! law of order `N` on `Z = (I, e, ..., e^(N-2))` with integral separation),
+//! magnitude and rate limits of the output, a bumpless start from a given
+//! output, and the health count of expansions while the actuator had
+//! headroom.
+//!
+//! The sign convention of every step is `e = y - y_d` (the output minus the
+//! reference: the opposite of a PID's `setpoint - y`); [`Controller::step_output`]
+//! takes `y` and `y_d` and forms it.
+//!
 //! A step is transactional: on an error the state is unchanged, with one
 //! exception: [`StepError::Overflow`] after the first step means the sample
 //! was valid but the law overflowed on it (an outlier drove the estimate out
@@ -33,14 +44,18 @@
 //! ```
 
 mod diagnostics;
+mod output;
 mod snapshot;
+mod start;
 
 pub use diagnostics::Diagnostics;
 pub use snapshot::{Snapshot, SNAPSHOT_FIELDS};
+pub use start::MAX_WIDENING;
 
 use crate::constraint::Envelopes;
 use crate::error::{ConfigError, StepError};
 use crate::{differentiator, manifold, Config, Real};
+use output::Limits;
 
 /// The controller's mutable state (everything `reset` clears).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,6 +64,8 @@ struct State<T, const N: usize> {
     /// Time of the next sample = `t_base + k * dt`.
     t_base: T,
     k: u64,
+    /// The estimate in the law's coordinates (with integral action slot 0
+    /// holds the integral `I`).
     zhat: [T; N],
     envelopes: Envelopes<T>,
     diag: Diagnostics<T, N>,
@@ -137,7 +154,9 @@ impl<T: Real, const N: usize> Controller<T, N> {
 
     /// Continues from a [`Controller::snapshot`]. Rejects non-finite values,
     /// a negative time and widths below the final ones; on error nothing
-    /// changes. The diagnostics keep only the clamp count and the last output.
+    /// changes. The diagnostics keep only the clamp count and the last output
+    /// (the count of expansions with headroom restarts at 0). The estimate
+    /// carries the integral (slot 0) with integral action.
     pub fn restore(&mut self, snap: &Snapshot<T, N>) -> Result<(), ConfigError> {
         snap.check(self.config.constraint().eps())?;
         let mut st = Self::initial_state(&self.config);
@@ -158,27 +177,61 @@ impl<T: Real, const N: usize> Controller<T, N> {
         self.state = Self::initial_state(&self.config);
     }
 
-    /// One output-feedback step at the nominal `dt` (eq. (35)).
+    /// One output-feedback step at the nominal `dt` (eq. (35)): the error
+    /// sample `e = y - y_d` (output minus reference, the opposite of a PID's
+    /// `setpoint - y`) in, the output to hold until the next sample out.
     #[inline]
     pub fn step(&mut self, e: T) -> Result<T, StepError> {
         self.control_then_advance(Measured::Error(e), None, None)
     }
 
     /// [`Controller::step`], telling the controller the input the actuator
-    /// really applied at the previous sample (diagnostics report the gap).
+    /// really applied at the previous sample (diagnostics report the gap; an
+    /// applied input that differs from the previous output marks the
+    /// actuator as limited, for the integral separation and the health
+    /// count). `e = y - y_d`.
     #[inline]
     pub fn step_applied(&mut self, e: T, applied: Option<T>) -> Result<T, StepError> {
         self.control_then_advance(Measured::Error(e), None, applied)
     }
 
+    /// One step from the measured output `y` and the reference `y_d`: the
+    /// error is `e = y - y_d` (output minus reference, the opposite of a
+    /// PID's `setpoint - y`). A non-finite `y` or `y_d` is
+    /// [`StepError::NonFiniteInput`]; a difference that overflows is
+    /// [`StepError::Overflow`] (state unchanged).
+    ///
+    /// ```
+    /// use famcc_core::{Config, Constraint, Controller, Feedback, HighGain};
+    /// let cfg = Config::<f64, 2>::builder(1e-3, &[(Feedback::Linear { k: 1.0 }, None)],
+    ///                                     Constraint::Lateral { eps: 0.1 }, 5.0)
+    ///     .differentiator(Some(HighGain::paper())).build().unwrap();
+    /// let (mut a, mut b) = (Controller::new(cfg), Controller::new(cfg));
+    /// assert_eq!(a.step_output(0.25, 1.0, None), b.step(-0.75));
+    /// ```
+    #[inline]
+    pub fn step_output(&mut self, y: T, y_d: T, applied: Option<T>) -> Result<T, StepError> {
+        if !(y.is_finite() && y_d.is_finite()) {
+            return Err(StepError::NonFiniteInput);
+        }
+        let e = y - y_d;
+        if !e.is_finite() {
+            return Err(StepError::Overflow);
+        }
+        self.control_then_advance(Measured::Error(e), None, applied)
+    }
+
     /// One step with a one-off sample period `dt` (the differentiator is
-    /// rediscretized for it; the nominal discretization is kept).
+    /// rediscretized for it; the nominal discretization is kept). `e = y - y_d`.
     pub fn step_dt(&mut self, e: T, dt: T, applied: Option<T>) -> Result<T, StepError> {
         self.control_then_advance(Measured::Error(e), Some(dt), applied)
     }
 
-    /// One state-feedback step with a measured error vector `Z = (z1..zn)`
-    /// (paper Theorems 1-2). A configured differentiator keeps tracking `z1`.
+    /// One state-feedback step with a measured error vector (paper Theorems
+    /// 1-2), `z1 = y - y_d` and its derivatives, in the law's coordinates:
+    /// `z = (z1, ..., zn)`, or with integral action `z[1..N] = (z1, ...,
+    /// zn)` and `z[0]` ignored (the controller's own integral is used). A
+    /// configured differentiator keeps tracking `z1`.
     pub fn step_state(&mut self, z: [T; N]) -> Result<T, StepError> {
         self.control_then_advance(Measured::State(z), None, None)
     }
@@ -186,6 +239,13 @@ impl<T: Real, const N: usize> Controller<T, N> {
     /// [`Controller::step_state`] with the applied input of the previous sample.
     pub fn step_state_applied(&mut self, z: [T; N], applied: Option<T>) -> Result<T, StepError> {
         self.control_then_advance(Measured::State(z), None, applied)
+    }
+
+    /// The number of steps so far at which the bounds were expanded while
+    /// the actuator was known to have headroom (cheap; also in
+    /// [`Diagnostics::unsaturated_expansions`]).
+    pub fn unsaturated_expansions(&self) -> u64 {
+        self.state.diag.unsaturated_expansions
     }
 
     /// Every step: computes the control from the current estimate (or the
@@ -200,9 +260,10 @@ impl<T: Real, const N: usize> Controller<T, N> {
         applied: Option<T>,
     ) -> Result<T, StepError> {
         let c = &self.config;
+        let off = c.estimate_offset();
         let finite = match &measured {
             Measured::Error(e) => e.is_finite(),
-            Measured::State(z) => z.iter().all(|v| v.is_finite()),
+            Measured::State(z) => z.iter().skip(off).all(|v| v.is_finite()),
         };
         if !finite {
             return Err(StepError::NonFiniteInput);
@@ -212,35 +273,46 @@ impl<T: Real, const N: usize> Controller<T, N> {
             Some(dt) => dt,
             None => c.dt(),
         };
-        // The vector the law uses, and the estimate the next step will use.
-        let (z, next) = match measured {
+        let first = !self.state.started;
+        // The measured sample, the vector the law uses, and the estimate the
+        // next step will use (all in the law's coordinates).
+        let (e, mut z, mut next) = match measured {
             Measured::Error(e) => {
                 let one_off;
-                let hgd = match (one_off_dt, c.differentiator()) {
-                    (Some(dt), Some(h)) => {
-                        one_off = h.discretize(dt).map_err(|_| StepError::InvalidDt)?;
+                let hgd = match one_off_dt.and_then(|dt| c.discretize_at(dt)) {
+                    Some(d) => {
+                        one_off = d.map_err(|_| StepError::InvalidDt)?;
                         Some(&one_off)
                     }
-                    _ => c.discretized(),
+                    None => c.discretized(),
                 };
                 match hgd {
                     Some(d) => {
                         let z = self.current_estimate(e);
-                        (self.limited(z), d.advance(&z, e))
+                        (e, self.limited(z), d.advance(&z, e))
                     }
-                    // Order 1 needs no differentiator: Z = (e) is measured.
-                    None if !differentiator::needed_at(N) => ([e; N], [e; N]),
+                    // Order 1 needs no differentiator: Z = (e) (or (I, e)) is measured.
+                    None if !differentiator::needed_at(c.plant_order()) => {
+                        let mut z = [e; N];
+                        if let (1, Some(i)) = (off, z.first_mut()) {
+                            *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
+                        }
+                        (e, z, z)
+                    }
                     None => return Err(StepError::NoDifferentiator),
                 }
             }
-            Measured::State(z) => {
-                let e = z.first().copied().unwrap_or_else(T::zero);
+            Measured::State(mut z) => {
+                let e = z.get(off).copied().unwrap_or_else(T::zero);
+                if let (1, Some(i)) = (off, z.first_mut()) {
+                    *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
+                }
                 let zhat = if self.state.started { self.state.zhat } else { z };
                 let next = match c.discretized() {
                     Some(d) => d.advance(&zhat, e),
                     None => z,
                 };
-                (z, next)
+                (e, z, next)
             }
         };
         if applied.is_some_and(|a| !a.is_finite()) {
@@ -254,10 +326,17 @@ impl<T: Real, const N: usize> Controller<T, N> {
         if !t_next.is_finite() {
             return Err(StepError::InvalidDt);
         }
+        // Bumpless start with integral action: the I_0 whose output is u0.
+        if let (true, 1, Some(u0)) = (first, off, c.initial_output()) {
+            let i0 = self.initial_integral(&z, u0, t);
+            if let Some(z0) = z.first_mut() {
+                *z0 = i0;
+            }
+        }
 
         // The law (eqs. (11), (28)-(32)), with the envelopes latched from
         // this very state at the first step.
-        let first = !self.state.started;
+        let c = &self.config;
         let constraint = c.constraint();
         let m = if constraint.needs_s(first) {
             manifold::evaluate(&z, c.laws())
@@ -266,14 +345,21 @@ impl<T: Real, const N: usize> Controller<T, N> {
         };
         // A failed first step leaves the envelopes as they were.
         let unlatched = if first { Some(self.state.envelopes) } else { None };
-        let eval = constraint.evaluate(
+        let flexible = c.rho_e().map(|rho_e| (rho_e, c.transition()));
+        let mut eval = constraint.evaluate(
             c.last_law(),
             &m,
             &mut self.state.envelopes,
             first.then(|| (c.latch(), c.k0())),
             t,
-            c.rho_e().map(|rho_e| (rho_e, c.transition())),
+            flexible,
         );
+        // Bumpless start without integral action: the latch for u0.
+        if let (true, 0, Some(u0)) = (first, off, c.initial_output()) {
+            let env = self.bumpless_envelopes(&z, self.state.envelopes, u0, t);
+            self.state.envelopes = env;
+            eval = constraint.evaluate(c.last_law(), &m, &mut self.state.envelopes, None, t, flexible);
+        }
         let v = -c.k_u() * c.gamma().eval(eval.xi);
         let env = &self.state.envelopes;
         let latched = !first || (env.x.rho0.is_finite() && env.y.rho0.is_finite());
@@ -284,6 +370,9 @@ impl<T: Real, const N: usize> Controller<T, N> {
                     // The sample is valid: let the estimate and the clock move
                     // on so that the controller recovers once the estimate is
                     // back in range (one outlier must not stop it for good).
+                    if let (1, Some(n0), Some(z0)) = (off, next.first_mut(), z.first()) {
+                        *n0 = *z0;
+                    }
                     self.state.zhat = next;
                     self.advance_clock(t_next, dt);
                 }
@@ -291,10 +380,46 @@ impl<T: Real, const N: usize> Controller<T, N> {
             return Err(StepError::Overflow);
         }
 
+        // The output limits, what is known of the actuator, the integral
+        // separation and the health count (docs/design.md §3.8).
+        let previous = if first {
+            c.initial_output()
+        } else {
+            Some(self.state.diag.v)
+        };
+        let limited = Limits {
+            magnitude: c.output_limits(),
+            rate: c.rate_limit().map(|r| (r, dt)),
+            previous,
+            applied: if first { None } else { applied },
+            k_u: c.k_u(),
+        }
+        .apply(v);
+        let integral = z.first().copied().filter(|_| off == 1);
+        let mut integrating = false;
+        if let (Some(i), Some(n0)) = (integral, next.first_mut()) {
+            let (width, eps) = match constraint {
+                crate::Constraint::Longitudinal { eps } => (eval.nominal.1, *eps),
+                crate::Constraint::Lateral { eps } => (eval.nominal.0, *eps),
+                crate::Constraint::Oblique { eps_x, .. } => (eval.nominal.0, *eps_x),
+            };
+            integrating = limited.integrates(e, eval.xi_nominal.abs() * width <= eps);
+            let i_next = if integrating { i + dt * e } else { i };
+            if !i_next.is_finite() {
+                if let Some(envelopes) = unlatched {
+                    self.state.envelopes = envelopes;
+                }
+                return Err(StepError::Overflow);
+            }
+            *n0 = i_next;
+        }
+
         let (x_u, y_u) = eval.nominal;
         let factor = eval.expansion;
+        let expanded = factor > T::one();
         let st = &mut self.state;
         let (previous_v, previous_clamps) = (st.diag.v, st.diag.clamp_count);
+        let unsaturated = st.diag.unsaturated_expansions;
         st.diag = Diagnostics {
             t,
             xi: eval.xi,
@@ -302,21 +427,26 @@ impl<T: Real, const N: usize> Controller<T, N> {
             bounds: (factor * x_u, factor * y_u),
             nominal_bounds: (x_u, y_u),
             z_hat: z,
-            expanded: factor > T::one(),
+            expanded,
             expansion: factor,
             saturation_gap: applied.map(|a| previous_v - a),
             clamp_count: previous_clamps + u64::from(eval.clamped),
-            v,
+            v: limited.u,
+            v_unlimited: v,
+            integral,
+            integrating,
+            unsaturated_expansions: unsaturated.saturating_add(u64::from(expanded && limited.headroom())),
             // The manifold values are filled in by `diagnostics()`.
             ..Diagnostics::default()
         };
         st.started = true;
         st.zhat = next;
         self.advance_clock(t_next, dt);
-        Ok(v)
+        Ok(limited.u)
     }
 
-    /// The estimate for this step: the stored one, or the initial one.
+    /// The estimate for this step: the stored one, or the initial one
+    /// (`(e0, d2, ..., dn)` in slots `offset..N`; the integral starts at 0).
     #[inline]
     fn current_estimate(&self, e: T) -> [T; N] {
         if self.state.started {
@@ -327,18 +457,22 @@ impl<T: Real, const N: usize> Controller<T, N> {
             .initial_derivatives()
             .copied()
             .unwrap_or([T::zero(); N]);
-        if let Some(z1) = z.first_mut() {
+        let off = self.config.estimate_offset();
+        z.iter_mut().take(off).for_each(|i| *i = T::zero());
+        if let Some(z1) = z.get_mut(off) {
             *z1 = e;
         }
         z
     }
 
-    /// The estimate after the optional saturation `|z_hat_i| <= limit_i`.
+    /// The estimate after the optional saturation `|z_hat_i| <= limit_i`
+    /// (the integral, slot 0 with integral action, is not limited).
     #[inline]
     fn limited(&self, mut z: [T; N]) -> [T; N] {
         if let Some(limits) = self.config.estimate_limits() {
             z.iter_mut()
                 .zip(limits.iter())
+                .skip(self.config.estimate_offset())
                 .for_each(|(z, l)| *z = z.max(-*l).min(*l));
         }
         z

@@ -46,13 +46,15 @@
 //! `A - H C` out of the matrix exponential, so small entries of `Phi` are
 //! accurate relative to their own size, not only to the largest entry.
 
+mod discretize;
 mod expm;
 mod linalg;
 
 use crate::error::positive;
 use crate::{ConfigError, Real};
-use expm::expm_zoh;
-use linalg::{identity, lu_solve, routh_hurwitz, Mat};
+use discretize::Failure;
+use linalg::routh_hurwitz;
+pub use linalg::spectral_radius;
 
 /// The paper's differentiator time constant `mu = 0.01` s (all three of its
 /// examples).
@@ -92,6 +94,26 @@ pub fn paper_coefficients<T: Real>(a: &mut [T]) {
         binomial = binomial * (n - i) as f64 / (i + 1) as f64;
         power *= 2.0;
         *ai = T::from_f64(binomial * power);
+    }
+}
+
+/// The discretization of famcc's default differentiator ("auto") at order
+/// `order`: [`Discretization::Exact`] up to order 3 (the paper's), and
+/// [`Discretization::Tustin`] from order 4 on, where the zero-order hold
+/// aliases (docs/design.md §7.2: on a clean `sin t` with `mu = 0.01`, order 4
+/// estimates `z4 = 55.4` where the truth is 0.42; Tustin gives 0.397).
+///
+/// ```
+/// use famcc_core::differentiator::auto_discretization;
+/// use famcc_core::Discretization;
+/// assert_eq!(auto_discretization(3), Discretization::Exact);
+/// assert_eq!(auto_discretization(4), Discretization::Tustin);
+/// ```
+pub const fn auto_discretization(order: usize) -> Discretization {
+    if order <= 3 {
+        Discretization::Exact
+    } else {
+        Discretization::Tustin
     }
 }
 
@@ -168,6 +190,40 @@ impl<T: Real, const N: usize> HighGain<T, N> {
         Self::new(T::from_f64(PAPER_MU), a, Discretization::default())
     }
 
+    /// famcc's default differentiator for order `N` (`differentiator="auto"`
+    /// in every binding): [`HighGain::auto_for`]`(N)`.
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, HighGain};
+    /// assert_eq!(HighGain::<f64, 3>::auto(), HighGain::paper());
+    /// let h = HighGain::<f64, 5>::auto();
+    /// assert_eq!((h.mu, h.a[0], h.discretization), (0.01, 10.0, Discretization::Tustin));
+    /// ```
+    pub fn auto() -> Self {
+        Self::auto_for(N)
+    }
+
+    /// famcc's default differentiator of run-time order `order <= N` (the
+    /// leading `order` coefficients; the rest are zero): up to order 3 the
+    /// paper's ([`HighGain::paper`]: `mu = 0.01`, `(4, 4)`, `(4, 6, 4)`,
+    /// exact), from order 4 on `mu = 0.01`, the binomial `(s + 2)^n` and
+    /// [`Discretization::Tustin`] ([`auto_discretization`]). With integral
+    /// action a controller of law order `N` runs the differentiator of order
+    /// `N - 1` on the error.
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, HighGain};
+    /// let h = HighGain::<f64, 3>::auto_for(2);
+    /// assert_eq!((h.a, h.discretization), ([4.0, 4.0, 0.0], Discretization::Exact));
+    /// ```
+    pub fn auto_for(order: usize) -> Self {
+        let mut a = [T::zero(); N];
+        if let Some(head) = a.get_mut(..order) {
+            paper_coefficients(head);
+        }
+        Self::new(T::from_f64(PAPER_MU), a, auto_discretization(order))
+    }
+
     /// The parameters as given (not validated; see [`HighGain::validate`]).
     pub fn new(mu: T, a: [T; N], discretization: Discretization) -> Self {
         Self {
@@ -191,21 +247,37 @@ impl<T: Real, const N: usize> HighGain<T, N> {
     /// assert!(HighGain::new(0.01_f64, [1.0, -1.0], Discretization::Exact).validate().is_err());
     /// ```
     pub fn validate(&self) -> Result<(), ConfigError> {
+        self.validate_order(N)
+    }
+
+    /// [`HighGain::validate`] for the differentiator of run-time order
+    /// `order` (`1 <= order <= N`): only the leading `order` coefficients
+    /// are used and checked.
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, HighGain};
+    /// let h = HighGain::new(0.01_f64, [4.0, 4.0, 0.0], Discretization::Exact);
+    /// assert!(h.validate_order(2).is_ok());
+    /// assert_eq!(h.validate().unwrap_err().parameter, "a");
+    /// assert!(h.validate_order(4).is_err());
+    /// ```
+    pub fn validate_order(&self, order: usize) -> Result<(), ConfigError> {
         positive(self.mu, "mu")?;
-        if N == 0 {
+        if order == 0 || order > N {
             return Err(ConfigError::new(
                 "a",
-                "must have at least one coefficient (order N >= 1)",
+                "must have at least one coefficient (order N >= 1) and at most N",
             ));
         }
-        if !self.a.iter().all(|&ai| ai.is_finite() && ai > T::zero()) {
+        let used = self.a.get(..order).unwrap_or(&[]);
+        if !used.iter().all(|&ai| ai.is_finite() && ai > T::zero()) {
             return Err(ConfigError::new("a", "must all be finite and > 0"));
         }
         let mut a = [0.0_f64; N];
-        for (d, s) in a.iter_mut().zip(self.a.iter()) {
+        for (d, s) in a.iter_mut().zip(used.iter()) {
             *d = s.to_f64_lossless();
         }
-        if routh_hurwitz(&a) {
+        if routh_hurwitz::<N>(a.get(..order).unwrap_or(&[])) {
             Ok(())
         } else {
             Err(ConfigError::new(
@@ -243,7 +315,29 @@ impl<T: Real, const N: usize> HighGain<T, N> {
     /// assert!(hg.discretize(0.0).is_err());
     /// ```
     pub fn discretize(&self, dt: T) -> Result<DiscreteHgd<T, N>, ConfigError> {
-        self.validate()?;
+        self.discretize_order(dt, N)
+    }
+
+    /// [`HighGain::discretize`] for the differentiator of run-time order
+    /// `order <= N` ([`HighGain::validate_order`]), embedded in the last
+    /// `order` slots of the `N`-sized recursion: the leading `N - order`
+    /// rows and columns of `Phi` and entries of `Gamma` are exactly zero, so
+    /// [`DiscreteHgd::advance`] leaves those slots at 0 (with integral action
+    /// slot 0 holds the integral of the error, which the controller keeps).
+    /// One computation serves every order: `order = N` is `discretize`.
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, HighGain};
+    /// let h = HighGain::new(0.01_f64, [4.0, 4.0, 0.0], Discretization::Exact);
+    /// let d3 = h.discretize_order(1e-3, 2).unwrap();
+    /// let d2 = HighGain::new(0.01_f64, [4.0, 4.0], Discretization::Exact).discretize(1e-3).unwrap();
+    /// assert_eq!((d3.phi[0], d3.gamma[0]), ([0.0; 3], 0.0));
+    /// assert_eq!([d3.phi[1][1], d3.phi[1][2], d3.phi[2][1], d3.phi[2][2]],
+    ///            [d2.phi[0][0], d2.phi[0][1], d2.phi[1][0], d2.phi[1][1]]);
+    /// assert_eq!(d3.advance(&[7.0, 1.0, 0.0], 1.0)[0], 0.0);
+    /// ```
+    pub fn discretize_order(&self, dt: T, order: usize) -> Result<DiscreteHgd<T, N>, ConfigError> {
+        self.validate_order(order)?;
         positive(dt, "dt")?;
         let mu = self.mu.to_f64_lossless();
         let tau = dt.to_f64_lossless() / mu;
@@ -257,43 +351,14 @@ impl<T: Real, const N: usize> HighGain<T, N> {
         for (d, s) in a.iter_mut().zip(self.a.iter()) {
             *d = s.to_f64_lossless();
         }
-        let m0 = balanced_matrix(&a);
-        let singular = ConfigError::new("dt", "gives a numerically singular system in the discretization");
-        let (phi0, gamma0) = match self.discretization {
-            Discretization::Exact => expm_zoh(&m0, &a, tau).ok_or(singular)?,
-            Discretization::Euler => {
-                let mut phi0 = identity::<N>();
-                for (prow, mrow) in phi0.iter_mut().zip(m0.iter()) {
-                    for (p, m) in prow.iter_mut().zip(mrow.iter()) {
-                        *p += tau * m;
-                    }
-                }
-                let mut g = a;
-                for gi in g.iter_mut() {
-                    *gi *= tau;
-                }
-                (phi0, g)
+        discretize::discretize(&a, order, tau, mu, self.discretization).map_err(|f| match f {
+            Failure::Singular => {
+                ConfigError::new("dt", "gives a numerically singular system in the discretization")
             }
-            Discretization::Tustin => {
-                let mut lhs = identity::<N>();
-                let mut rhs = identity::<N>();
-                for ((lrow, rrow), mrow) in lhs.iter_mut().zip(rhs.iter_mut()).zip(m0.iter()) {
-                    for ((l, r), m) in lrow.iter_mut().zip(rrow.iter_mut()).zip(mrow.iter()) {
-                        *l -= 0.5 * tau * m;
-                        *r += 0.5 * tau * m;
-                    }
-                }
-                let mut g = a;
-                for gi in g.iter_mut() {
-                    *gi *= tau;
-                }
-                lu_solve(lhs, rhs, g).ok_or(singular)?
+            Failure::Overflow => {
+                ConfigError::new("mu", "is so small that Phi or Gamma overflows this float type")
             }
-        };
-        unbalance(&phi0, &gamma0, mu).ok_or(ConfigError::new(
-            "mu",
-            "is so small that Phi or Gamma overflows this float type",
-        ))
+        })
     }
 }
 
@@ -317,60 +382,28 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
         }
         out
     }
-}
 
-// ---------------------------------------------------------------------------
-// Balanced coordinates
-// ---------------------------------------------------------------------------
-
-/// `M0 = A - a C`: the matrix of eq. (34) in balanced coordinates.
-fn balanced_matrix<const N: usize>(a: &[f64; N]) -> Mat<N> {
-    let mut m = [[0.0; N]; N];
-    for (i, (row, ai)) in m.iter_mut().zip(a.iter()).enumerate() {
-        if let Some(first) = row.first_mut() {
-            *first = -ai;
-        }
-        if let Some(sup) = row.get_mut(i + 1) {
-            *sup += 1.0;
-        }
-    }
-    m
-}
-
-/// Maps the balanced-coordinate recursion back to `Zhat`:
-/// `Phi_ij = Phi0_ij mu^(j-i)`, `Gamma_i = Gamma0_i mu^(-i)` (0-based), then
-/// rounds to `T`. `None` if anything is not finite in `T`.
-fn unbalance<T: Real, const N: usize>(
-    phi0: &Mat<N>,
-    gamma0: &[f64; N],
-    mu: f64,
-) -> Option<DiscreteHgd<T, N>> {
-    let mut phi = [[T::zero(); N]; N];
-    let mut gamma = [T::zero(); N];
-    let pow = |k: i64| -> f64 {
-        // k is within +-(N-1); clamp keeps the cast lossless for any N.
-        let k = k.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
-        num_traits::Float::powi(mu, k)
-    };
-    for (i, ((prow, p0row), (g, g0))) in phi
-        .iter_mut()
-        .zip(phi0.iter())
-        .zip(gamma.iter_mut().zip(gamma0.iter()))
-        .enumerate()
-    {
-        let i = i as i64;
-        for (j, (p, p0)) in prow.iter_mut().zip(p0row.iter()).enumerate() {
-            let x = if *p0 == 0.0 { 0.0 } else { p0 * pow(j as i64 - i) };
-            *p = T::from_f64(x);
-            if !p.is_finite() {
-                return None;
+    /// The spectral radius of `Phi` (computed in `f64` by [`spectral_radius`]):
+    /// the recursion is stable iff it is below 1. A configuration whose
+    /// discretized differentiator has a radius `>= 1` is rejected
+    /// ([`crate::ConfigBuilder::build`]; e.g. Euler at `dt = 5 mu`).
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, HighGain};
+    /// let h = |d| HighGain::new(0.01_f64, [4.0, 4.0], d);
+    /// // exact: eigenvalue exp(-2 dt / mu), a double one (a defective
+    /// // eigenvalue moves by ~sqrt(rounding): the radius is read to ~1e-6)
+    /// let r = h(Discretization::Exact).discretize(1e-3).unwrap().spectral_radius();
+    /// assert!((r - (-0.2_f64).exp()).abs() < 1e-5);
+    /// assert!(h(Discretization::Euler).discretize(0.05).unwrap().spectral_radius() > 1.0);
+    /// ```
+    pub fn spectral_radius(&self) -> f64 {
+        let mut m = [[0.0_f64; N]; N];
+        for (row, src) in m.iter_mut().zip(self.phi.iter()) {
+            for (x, p) in row.iter_mut().zip(src.iter()) {
+                *x = p.to_f64_lossless();
             }
         }
-        let x = if *g0 == 0.0 { 0.0 } else { g0 * pow(-i) };
-        *g = T::from_f64(x);
-        if !g.is_finite() {
-            return None;
-        }
+        spectral_radius(&m)
     }
-    Some(DiscreteHgd { phi, gamma })
 }
