@@ -32,7 +32,12 @@ def _loaded_double_integrator(ctrl: famcc.Controller, load: float, t_end: float)
 def _pd(order: int = 2, **kw: object) -> famcc.Controller:
     n_laws = order if kw.get("integral") else order - 1
     return famcc.Controller(
-        order, DT, [famcc.Linear(2.0)] * n_laws, eps=2.0, k_u=4.0, **kw  # type: ignore[arg-type]
+        order,
+        DT,
+        [famcc.Linear(2.0)] * n_laws,
+        eps=2.0,
+        k_u=4.0,
+        **kw,  # type: ignore[arg-type]
     )
 
 
@@ -117,12 +122,16 @@ def test_step_output_is_step_of_y_minus_y_d():
 
 
 def test_lint_findings_warn_at_construction():
-    with pytest.warns(famcc.DesignWarning, match=r"rho_e: .*rule: rho_e <= 0.1 eps.*suggested rho_e"):
+    with pytest.warns(
+        famcc.DesignWarning, match=r"rho_e: .*rule: rho_e <= 0.1 eps.*suggested rho_e"
+    ):
         c = famcc.Controller(2, DT, famcc.Linear(1.0), eps=1.0, k_u=1.0, rho_e=0.5)
     assert len(c.lint()) == 1
     with pytest.warns(famcc.DesignWarning, match=r"dt / mu <= 0.2"):
         famcc.Controller(2, 5e-3, famcc.Linear(1.0), eps=1.0, k_u=1.0)
-    with pytest.warns(famcc.DesignWarning, match="discretization: .*suggested discretization = tustin"):
+    with pytest.warns(
+        famcc.DesignWarning, match="discretization: .*suggested discretization = tustin"
+    ):
         famcc.Controller(
             4,
             DT,
@@ -132,9 +141,7 @@ def test_lint_findings_warn_at_construction():
             differentiator=famcc.HighGain(0.01, [8, 24, 32, 16], limits=[10, 1e2, 1e3, 1e4]),
         )
     with pytest.warns(famcc.DesignWarning, match="stage 2: k: .*chatters"):
-        famcc.Controller(
-            3, DT, [famcc.Linear(1.0), famcc.FiniteTime(20.0, 0.5)], eps=0.01, k_u=5.0
-        )
+        famcc.Controller(3, DT, [famcc.Linear(1.0), famcc.FiniteTime(20.0, 0.5)], eps=0.01, k_u=5.0)
 
 
 def test_the_papers_scenarios_construct_without_warnings():

@@ -56,9 +56,10 @@ def fd_derivative(y, stride, h, order, half_width=4):
     w = fd_weights(offsets, order)
     spacing = stride * h
     centres = np.arange(half_width * stride, len(y) - half_width * stride, stride)
-    vals = np.array([
-        sum(wj * y[c + oj * stride] for wj, oj in zip(w, offsets)) for c in centres
-    ]) / spacing**order
+    vals = (
+        np.array([sum(wj * y[c + oj * stride] for wj, oj in zip(w, offsets)) for c in centres])
+        / spacing**order
+    )
     return centres, vals
 
 
@@ -68,22 +69,30 @@ def fd_derivative(y, stride, h, order, half_width=4):
 def paper_second_rhs(t, x, u, amp):
     """Independent transcription of paper eq. System_sim (amp = 1 paper, 3 authors' code)."""
     x1, x2 = x
-    return np.array([
-        (1 + 0.1 * np.cos(x1) + 0.1 * np.sin(t)) * x2 - x1 + np.sin(t),
-        (2 + 0.2 * np.sin(x1 * x2) + 0.1 * np.cos(t)) * u
-        - (x1**2 - 1) * x2 + amp * np.sin(t) + amp * np.cos(2 * t),
-    ])
+    return np.array(
+        [
+            (1 + 0.1 * np.cos(x1) + 0.1 * np.sin(t)) * x2 - x1 + np.sin(t),
+            (2 + 0.2 * np.sin(x1 * x2) + 0.1 * np.cos(t)) * u
+            - (x1**2 - 1) * x2
+            + amp * np.sin(t)
+            + amp * np.cos(2 * t),
+        ]
+    )
 
 
 def paper_third_rhs(t, x, u):
     """Paper eq. System_sim3 with the factor x2 restored in x1'."""
     x1, x2, x3 = x
-    return np.array([
-        (1 + 0.1 * np.sin(x1) + 0.1 * np.cos(t)) * x2 - x1 + np.cos(t),
-        (1 + 0.1 * np.cos(x1 * x2) + 0.1 * np.sin(t)) * x3 - (x1**2 - 1) * x2 + np.sin(t),
-        (2 + 0.2 * np.sin(x1 * x2 * x3) + 0.1 * np.cos(t)) * u
-        - (x1**2 + x2) * x3 + 10 * np.sin(t) + 10 * np.cos(2 * t),
-    ])
+    return np.array(
+        [
+            (1 + 0.1 * np.sin(x1) + 0.1 * np.cos(t)) * x2 - x1 + np.cos(t),
+            (1 + 0.1 * np.cos(x1 * x2) + 0.1 * np.sin(t)) * x3 - (x1**2 - 1) * x2 + np.sin(t),
+            (2 + 0.2 * np.sin(x1 * x2 * x3) + 0.1 * np.cos(t)) * u
+            - (x1**2 + x2) * x3
+            + 10 * np.sin(t)
+            + 10 * np.cos(2 * t),
+        ]
+    )
 
 
 def test_second_order_matches_the_equations_of_both_variants():
@@ -94,8 +103,9 @@ def test_second_order_matches_the_equations_of_both_variants():
         np.testing.assert_array_equal(plant.x0, [-1.0, 0.5])
         for _ in range(20):
             t, x, u = rng.uniform(0, 10), rng.normal(size=2) * 2, rng.normal() * 5
-            np.testing.assert_allclose(plant.rhs(t, x, u), paper_second_rhs(t, x, u, amp),
-                                       rtol=1e-13, atol=1e-13)
+            np.testing.assert_allclose(
+                plant.rhs(t, x, u), paper_second_rhs(t, x, u, amp), rtol=1e-13, atol=1e-13
+            )
 
 
 def test_second_order_variants_differ_only_by_the_disturbance_amplitude():
@@ -117,8 +127,9 @@ def test_third_order_matches_the_equations_and_variants_differ_only_in_x0():
     rng = np.random.default_rng(3)
     for _ in range(20):
         t, x, u = rng.uniform(0, 10), rng.normal(size=3), rng.normal() * 5
-        np.testing.assert_allclose(paper.rhs(t, x, u), paper_third_rhs(t, x, u),
-                                   rtol=1e-13, atol=1e-12)
+        np.testing.assert_allclose(
+            paper.rhs(t, x, u), paper_third_rhs(t, x, u), rtol=1e-13, atol=1e-12
+        )
         np.testing.assert_array_equal(paper.rhs(t, x, u), code.rhs(t, x, u))
 
 
@@ -199,13 +210,18 @@ def test_closed_forms_agree_with_the_generic_jet_computation(factory, variant):
     rng = np.random.default_rng(4)
     for _ in range(25):
         t, x = rng.uniform(0, 10), rng.normal(size=plant.order) * 2
-        np.testing.assert_allclose(plant.output_derivatives(t, x),
-                                   generic.output_derivatives(plant, t, x),
-                                   rtol=1e-12, atol=1e-12)
-        np.testing.assert_allclose(plant.gain_and_drift(t, x),
-                                   generic.gain_and_drift(plant, t, x), rtol=1e-12, atol=1e-11)
-        np.testing.assert_allclose(plant.rhs(t, x, 0.7), generic.rhs(plant, t, x, 0.7),
-                                   rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(
+            plant.output_derivatives(t, x),
+            generic.output_derivatives(plant, t, x),
+            rtol=1e-12,
+            atol=1e-12,
+        )
+        np.testing.assert_allclose(
+            plant.gain_and_drift(t, x), generic.gain_and_drift(plant, t, x), rtol=1e-12, atol=1e-11
+        )
+        np.testing.assert_allclose(
+            plant.rhs(t, x, 0.7), generic.rhs(plant, t, x, 0.7), rtol=1e-13, atol=1e-13
+        )
 
 
 @pytest.mark.parametrize(("factory", "variant"), PAPER_PLANTS)
@@ -264,8 +280,9 @@ def test_generic_plant_with_float_only_callables_supports_order_two():
     f = [lambda x, t: -x[0] + math.sin(t), lambda x, t: -x[1]]
     plant = plants.StrictFeedback(g, f, [0.2, 0.1])
     t, x = 0.5, np.array([0.2, 0.1])
-    np.testing.assert_allclose(plant.output_derivatives(t, x),
-                               [0.2, (1 + 0.1 * math.cos(0.2)) * 0.1 - 0.2 + math.sin(0.5)])
+    np.testing.assert_allclose(
+        plant.output_derivatives(t, x), [0.2, (1 + 0.1 * math.cos(0.2)) * 0.1 - 0.2 + math.sin(0.5)]
+    )
     with pytest.raises(NotImplementedError, match="jets"):
         plant.gain_and_drift(t, x)
 
@@ -319,8 +336,14 @@ def test_jet_derivatives_of_elementary_functions():
     t = jet([t0, 1.0, 0.0, 0.0, 0.0])
 
     def fun(s):
-        return (np.exp(np.sin(s)) * np.sqrt(1.0 + s * s) / (2.0 + np.cos(s))
-                + np.tanh(s) ** 3 + np.arctan(s) - np.log(1.0 + s * s) + s**2.5 - 3.0 / s)
+        return (
+            np.exp(np.sin(s)) * np.sqrt(1.0 + s * s) / (2.0 + np.cos(s))
+            + np.tanh(s) ** 3
+            + np.arctan(s)
+            - np.log(1.0 + s * s)
+            + s**2.5
+            - 3.0 / s
+        )
 
     derivs = fun(t).derivatives()
     assert derivs[0] == pytest.approx(fun(t0), rel=1e-14)

@@ -14,6 +14,7 @@ fn rule_name(r: Rule) -> &'static str {
         Rule::Noise => "noise",
         Rule::HoldInput => "hold-input",
         Rule::GainUnknown => "gain-unknown",
+        Rule::EstimateLimits => "estimate-limits",
     }
 }
 
@@ -28,7 +29,7 @@ fn level_name(l: Level) -> &'static str {
 /// The design rules of famcc-core: the chosen numbers and the findings
 /// `(rule, level, value, limit, suggestion)`.
 #[pyfunction]
-#[pyo3(signature = (order, dt, u_limits, eps, settle_time, hold_input, gain=None, noise_std=0.0, integral=None, phase_budget=None, mu_per_dt=None, settle_fraction=None))]
+#[pyo3(signature = (order, dt, u_limits, eps, settle_time, hold_input, gain=None, noise_std=0.0, integral=None, phase_budget=None, mu_per_dt=None, settle_fraction=None, max_error=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn design_rules<'py>(
     py: Python<'py>,
@@ -44,6 +45,7 @@ pub fn design_rules<'py>(
     phase_budget: Option<f64>,
     mu_per_dt: Option<f64>,
     settle_fraction: Option<f64>,
+    max_error: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut req = Requirements::new(order, dt, u_limits, eps, settle_time, hold_input);
     req.gain = gain;
@@ -58,6 +60,7 @@ pub fn design_rules<'py>(
     if let Some(f) = settle_fraction {
         req.settle_fraction = f;
     }
+    req.max_error = max_error;
     let d = design::design(&req).map_err(config_err)?;
     let out = PyDict::new(py);
     out.set_item("law_order", d.law_order)?;
@@ -79,6 +82,10 @@ pub fn design_rules<'py>(
     out.set_item("rho_e", d.rho_e)?;
     out.set_item("k0", d.k0)?;
     out.set_item("settle_time", d.settle_time)?;
+    out.set_item(
+        "estimate_limits",
+        d.estimate_limits.map(|l| l.get(..order).unwrap_or(&[]).to_vec()),
+    )?;
     let checks: Vec<(&str, &str, f64, f64, f64)> = d
         .checks()
         .iter()

@@ -78,7 +78,14 @@ impl Diagnostics {
             ds_prev: f(d.ds_prev),
             bounds: (f(d.bounds.0), f(d.bounds.1)),
             nominal_bounds: (f(d.nominal_bounds.0), f(d.nominal_bounds.1)),
-            z_hat: d.z_hat.iter().map(|x| f(*x)).collect(),
+            // With integral action the core's estimate is (I, z_hat_1..z_hat_n): the
+            // integral has its own getter, z_hat is the plant's error estimate.
+            z_hat: d
+                .z_hat
+                .iter()
+                .skip(usize::from(d.integral.is_some()))
+                .map(|x| f(*x))
+                .collect(),
             expanded: d.expanded,
             expansion: f(d.expansion),
             saturation_gap: d.saturation_gap.map(f),
@@ -94,7 +101,8 @@ impl Diagnostics {
 
 #[pymethods]
 impl Diagnostics {
-    /// The estimate the output was computed from (NumPy array).
+    /// The estimate of the error vector (z_1..z_n) the output was computed from
+    /// (NumPy array; with integral action the integral is `integral`).
     #[getter]
     fn z_hat<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.z_hat)

@@ -19,6 +19,8 @@ _RULES = {
     "eps_s tanh(hold / 2 k_u) / lambda^(n-1), stays below eps",
     "noise": "noise in s below 0.15 eps_s and 6 sigma of the output noise below 5 % of the range",
     "gain-unknown": "the input gain G is known, so the loop rate can be set and checked",
+    "estimate-limits": "at order >= 4 the estimates are limited (4 max_error loop_rate^(i-1)), "
+    "which keeps the differentiator's start-up peaking out of the law",
 }
 
 
@@ -110,6 +112,17 @@ def _message(
                 else ": even the slowest allowed differentiator "
                 "(mu <= 0.05 settle_time) is too noisy; filter the sensor or relax eps"
             )
+        )
+    if name == "estimate-limits":
+        if level == "ok":
+            return (
+                f"estimates limited: |z_hat_1| <= {value:.4g}, |z_hat_i| <= that times "
+                "loop_rate^(i-1) (from max_error)"
+            )
+        return (
+            "no estimate limits: at order >= 4 the differentiator's start-up peaking can "
+            "drive the law far outside its bounds; pass max_error= (the largest error to "
+            "recover from, e.g. the set-point step) or use famcc.tune(plant), which measures it"
         )
     if name == "gain-unknown":
         return (
@@ -203,7 +216,12 @@ class Design:
             "rho_e": p["rho_e"],
             "gamma": "log",
             "differentiator": (
-                famcc.HighGain(p["mu"], list(p["a"]), discretization=p["discretization"])
+                famcc.HighGain(
+                    p["mu"],
+                    list(p["a"]),
+                    discretization=p["discretization"],
+                    limits=p.get("estimate_limits"),
+                )
                 if n > 1
                 else None
             ),
@@ -296,6 +314,7 @@ def design(
     phase_budget: float | None = None,
     mu_per_dt: float | None = None,
     settle_fraction: float | None = None,
+    max_error: float | None = None,
 ) -> Design:
     """A controller for the requirements, from rules (no simulation).
 
@@ -332,6 +351,10 @@ def design(
         The smallest differentiator time constant in samples (default 10).
     settle_fraction : float, optional
         The envelope's preset time as a fraction of ``settle_time`` (default 0.5).
+    max_error : float, optional
+        The largest error ``|y - y_d|`` to recover from (e.g. a set-point step),
+        output units. At order >= 4 it sets the estimate limits; without it the
+        design warns.
 
     Returns
     -------
@@ -359,6 +382,7 @@ def design(
         phase_budget,
         mu_per_dt,
         settle_fraction,
+        None if max_error is None else float(max_error),
     )
     req = {
         "order": int(order),
@@ -373,6 +397,7 @@ def design(
         "phase_budget": phase_budget,
         "mu_per_dt": mu_per_dt,
         "settle_fraction": settle_fraction,
+        "max_error": None if max_error is None else float(max_error),
     }
     params = {k: v for k, v in raw.items() if k != "checks"}
     checks = tuple(

@@ -1,0 +1,185 @@
+"""famcc.design, famcc.tune and famcc.tuning.assess (docs/tuning.md): the rules give
+controllers that close the loop, every finding and every requirement can fail."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import famcc
+import pytest
+
+MOTOR = {"u_limits": (-12.0, 12.0), "eps": 0.01, "settle_time": 1.5}
+
+
+def _quiet_design(*args, **kwargs):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", famcc.DesignWarning)
+        return famcc.design(*args, **kwargs)
+
+
+def _finding(d, name):
+    return next(f for f in d.checks if f.name == name)
+
+
+@pytest.mark.parametrize("order", range(1, 8))
+def test_design_builds_a_controller_of_the_plant_order_at_every_order(order):
+    d = _quiet_design(
+        order,
+        1e-3,
+        u_limits=(-10, 10),
+        eps=0.01,
+        settle_time=10.0,
+        hold_input=1.0,
+        gain=2.0,
+        max_error=1.0,
+    )
+    assert d.integral and d.law_order == order + 1
+    ctrl = d.controller()
+    assert ctrl.order == order
+    assert math.isfinite(ctrl.step(0.1))
+    # the phase-budget ratio: differentiator / loop = loop / manifold
+    p = d.parameters
+    if order > 1:
+        assert 2.0 / p["mu"] / p["loop_rate"] == pytest.approx(p["loop_rate"] / p["lambda"])
+    assert p["mu"] >= 10 * 1e-3 - 1e-15
+
+
+def test_design_alone_closes_the_loop_on_a_loaded_motor_without_expansion():
+    plant = famcc.plants.dc_motor(load=1.0, t_load=0.0)
+    d = _quiet_design(2, 1e-3, hold_input=plant.hold_input(), gain=plant.gain, **MOTOR)
+    res = famcc.simulate(
+        plant,
+        d.controller(),
+        4.0,
+        reference=famcc.Constant(1.0),
+        u_limits=MOTOR["u_limits"],
+        substeps=4,
+    )
+    a = famcc.tuning.assess(res, **MOTOR)
+    assert a.ok, a.failures
+    assert res.unsaturated_expansions == 0
+
+
+@pytest.mark.parametrize(
+    ("name", "kwargs"),
+    [
+        ("hold-input", {"hold_input": 20.0, "gain": 25.0}),
+        ("settle-time", {"hold_input": 1.0, "gain": 25.0, "settle_time": 0.05}),
+        ("accuracy", {"hold_input": 4.0, "gain": 25.0, "integral": False}),
+        ("noise", {"hold_input": 1.0, "gain": 25.0, "noise_std": 10.0}),
+    ],
+)
+def test_every_design_finding_can_fail_and_warns(name, kwargs):
+    req = {**MOTOR, "settle_time": 3.0, **kwargs}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        d = famcc.design(2, 1e-3, **req)
+    assert any(
+        issubclass(w.category, famcc.DesignWarning) and f": {name}: " in str(w.message)
+        for w in caught
+    )
+    f = _finding(d, name)
+    assert f.level == "fail" and not d.ok
+    assert str(f).startswith("[fail]")
+
+
+def test_unknown_gain_warns_and_high_order_asks_for_max_error():
+    with pytest.warns(famcc.DesignWarning, match="gain-unknown"):
+        d = famcc.design(2, 1e-3, hold_input=1.0, **MOTOR)
+    assert _finding(d, "gain-unknown").level == "warn" and not d.integral
+    with pytest.warns(famcc.DesignWarning, match="estimate-limits"):
+        d4 = famcc.design(
+            4, 1e-3, hold_input=1.0, gain=1e3, u_limits=(-5, 5), eps=0.01, settle_time=10.0
+        )
+    assert _finding(d4, "estimate-limits").level == "warn"
+    d4 = _quiet_design(
+        4,
+        1e-3,
+        hold_input=1.0,
+        gain=1e3,
+        u_limits=(-5, 5),
+        eps=0.01,
+        settle_time=10.0,
+        max_error=0.5,
+    )
+    assert _finding(d4, "estimate-limits").level == "ok"
+    assert d4.controller_kwargs()["differentiator"].limits is not None
+
+
+@pytest.mark.parametrize("bad", ["order", "dt", "eps", "settle_time", "u_limits", "hold_input"])
+def test_design_rejects_bad_requirements_by_name(bad):
+    req = {"order": 2, "dt": 1e-3, "hold_input": 1.0, **MOTOR}
+    req[bad] = (1.0, -1.0) if bad == "u_limits" else (0 if bad == "order" else -1.0)
+    with pytest.raises(famcc.ConfigError, match=bad):
+        famcc.design(req.pop("order"), req.pop("dt"), **req)
+
+
+def _motor_run(ctrl, t_end=3.0, load=0.0):
+    plant = famcc.plants.dc_motor(load=load, t_load=0.0)
+    return famcc.simulate(
+        plant, ctrl, t_end, reference=famcc.Constant(1.0), u_limits=(-12.0, 12.0), substeps=4
+    )
+
+
+def test_assess_fails_a_run_that_settles_late_or_never():
+    d = _quiet_design(
+        2,
+        1e-3,
+        hold_input=0.5,
+        gain=25.0,
+        integral=False,
+        u_limits=(-12, 12),
+        eps=0.02,
+        settle_time=2.0,
+    )
+    res = _motor_run(d.controller())
+    assert famcc.tuning.assess(res, eps=0.02, settle_time=2.0, u_limits=(-12, 12)).ok
+    late = famcc.tuning.assess(res, eps=0.02, settle_time=0.2, u_limits=(-12, 12))
+    assert not late.ok and late.failures[0].startswith("settled at")
+    assert famcc.tuning.assess(None, eps=0.02, settle_time=2.0, u_limits=(-12, 12)).failures == [
+        "diverged"
+    ]
+
+
+def test_assess_fails_a_chattering_run_and_one_that_expands_with_headroom():
+    # A hand-made stiff loop: the s-loop rate 2 k_u G / eps = 800 1/s at 1 kHz chatters.
+    with warnings.catch_warnings():  # its health warning is expected
+        warnings.simplefilter("ignore", famcc.DesignWarning)
+        stiff = famcc.Controller(
+            2, 1e-3, famcc.Linear(3.0), eps=0.5, k_u=8.0, settle_time=0.5, rho_e=1e-4
+        )
+        res_stiff = _motor_run(stiff)
+    a = famcc.tuning.assess(res_stiff, eps=0.05, settle_time=2.9, u_limits=(-12, 12))
+    assert any(f.startswith("u ripple") for f in a.failures), a
+    never = famcc.tuning.assess(res_stiff, eps=1e-4, settle_time=2.9, u_limits=(-12, 12))
+    assert "never settled" in never.failures and never.settling_time is None, never
+    # k_u far below the 4 V hold input: the bounds open although 12 V are available.
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", famcc.DesignWarning)
+        weak = famcc.Controller(
+            2, 1e-3, famcc.Linear(5.0), eps=0.5, k_u=0.5, settle_time=0.5, rho_e=0.05
+        )
+        res = _motor_run(weak, t_end=3.0, load=1.0)
+        assert res.unsaturated_expansions > 0
+    b = famcc.tuning.assess(res, eps=0.5, settle_time=2.9, u_limits=(-12, 12))
+    assert b.expanded_unsaturated > 0 and any("headroom" in f for f in b.failures), b
+
+
+def test_tune_reports_failure_when_no_candidate_can_meet_the_requirement():
+    plant = famcc.plants.dc_motor(load=0.0)
+    with pytest.warns(famcc.DesignWarning, match="no candidate"):
+        d = famcc.tune(
+            plant,
+            dt=1e-3,
+            u_limits=(-12, 12),
+            eps=1e-3,
+            settle_time=0.05,
+            reference=famcc.Constant(1.0),
+            progress=False,
+            t_end=0.5,
+        )
+    f = _finding(d, "tune")
+    assert f.level == "fail" and not d.ok
+    assert len(d.trials) >= 15 and all(not t.feasible for t in d.trials)
+    assert all(t.reason for t in d.trials)
