@@ -342,3 +342,6 @@ pub extern "C" fn rust_eh_personality() {}
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod tests_options;

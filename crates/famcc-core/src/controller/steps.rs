@@ -66,7 +66,8 @@ impl<T: Real, const N: usize> Controller<T, N> {
         self.control_then_advance(Measured::State(z), None, None)
     }
 
-    /// [`Controller::step_state`] with the applied input of the previous sample.
+    /// [`Controller::step_state`] with the applied input of the previous
+    /// sample; `z1 = y - y_d`.
     pub fn step_state_applied(&mut self, z: [T; N], applied: Option<T>) -> Result<T, StepError> {
         self.control_then_advance(Measured::State(z), None, applied)
     }
