@@ -97,3 +97,36 @@ fn bad_output_limits_are_rejected() {
         .collect();
     assert_eq!(name, b"output_limits");
 }
+
+#[test]
+fn lint_through_the_c_abi() {
+    let mut cfg = c_config();
+    cfg.flexible = FamccFlexible::On as u32;
+    cfg.rho_e = 1.0; // > 0.1 eps = 0.2
+    let mut storage = MaybeUninit::<FamccO3F64>::uninit();
+    let st = unsafe { famcc_o3_f64_init(storage.as_mut_ptr(), &cfg, core::ptr::null_mut()) };
+    assert_eq!(st, FamccStatus::Ok);
+    let mut count = 0usize;
+    let st = unsafe { famcc_o3_f64_lint(storage.as_ptr(), core::ptr::null_mut(), 0, &mut count) };
+    assert_eq!((st, count), (FamccStatus::Ok, 1));
+    let mut out = [MaybeUninit::<FamccFinding>::uninit(); FAMCC_MAX_FINDINGS];
+    let st = unsafe { famcc_o3_f64_lint(storage.as_ptr(), out[0].as_mut_ptr(), out.len(), &mut count) };
+    assert_eq!((st, count), (FamccStatus::Ok, 1));
+    let f = unsafe { out[0].assume_init() };
+    let text: std::string::String = f
+        .message
+        .iter()
+        .take_while(|c| **c != 0)
+        .map(|c| *c as u8 as char)
+        .collect();
+    assert!(
+        text.starts_with("rho_e: ") && text.contains("rule: rho_e <= 0.1 eps"),
+        "{text}"
+    );
+    assert_eq!(f.stage, -1);
+    // The paper-like configuration has none.
+    let st = unsafe { famcc_o3_f64_init(storage.as_mut_ptr(), &c_config(), core::ptr::null_mut()) };
+    assert_eq!(st, FamccStatus::Ok);
+    let st = unsafe { famcc_o3_f64_lint(storage.as_ptr(), core::ptr::null_mut(), 0, &mut count) };
+    assert_eq!((st, count), (FamccStatus::Ok, 0));
+}
