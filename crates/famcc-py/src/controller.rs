@@ -251,14 +251,16 @@ impl PyController {
         self.core.diagnostics()
     }
 
-    /// The estimate the next step will use (NumPy array).
+    /// The estimate the next step will use (NumPy array; with integral
+    /// action the integral `I` first, then the plant's `z1..zn`).
     #[getter]
     fn estimate<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.core.estimate())
     }
 
     /// The state as a float vector, laid out as `STATE_FIELDS` followed by
-    /// the estimate `z_hat[0..order]`.
+    /// the estimate `z_hat[0..order]` (with integral action `order + 1`
+    /// entries: the integral `I` first).
     fn state<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.core.state())
     }
