@@ -165,15 +165,22 @@ def test_unstable_differentiator_is_a_config_error():
 
 def test_health_warning_once_with_the_cure():
     ctrl = famcc.Controller(
-        2, DT, famcc.Linear(2.0), eps=2.0, k_u=0.3, rho_e=0.1, output_limits=(-100.0, 100.0)
+        2,
+        DT,
+        famcc.Linear(2.0),
+        eps=2.0,
+        k_u=0.3,
+        rho_e=0.1,
+        settle_time=0.2,
+        output_limits=(-100.0, 100.0),
     )
     with pytest.warns(famcc.DesignWarning, match=r"k_u too small for this plant: .*raise k_u to"):
-        _loaded_double_integrator(ctrl, 2.0, 1.0)
+        _loaded_double_integrator(ctrl, 2.0, 3.0)
     n = ctrl.diagnostics.unsaturated_expansions
     assert n > 0
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # once per controller
-        _loaded_double_integrator(ctrl, 2.0, 0.5)
+        _loaded_double_integrator(ctrl, 2.0, 1.0)
     assert ctrl.diagnostics.unsaturated_expansions > n
 
 
@@ -184,9 +191,12 @@ def test_simresult_reports_the_health_count():
         f=[lambda x, t: 0.0, lambda x, t: -2.0],
         x0=[0.5, 0.0],
     )
-    ctrl = famcc.Controller(2, DT, famcc.Linear(2.0), eps=2.0, k_u=0.3, rho_e=0.1)
+    ctrl = famcc.Controller(
+        2, DT, famcc.Linear(2.0), eps=2.0, k_u=0.3, rho_e=0.1, settle_time=0.2
+    )
     with pytest.warns(famcc.DesignWarning, match="k_u too small"):
-        res = famcc.simulate(plant, ctrl, 1.0, reference=famcc.Constant(0.0))
+        res = famcc.simulate(plant, ctrl, 3.0, reference=famcc.Constant(0.0))
+    assert res.unsaturated_expansions >= 100
     assert res.unsaturated_expansions is not None and res.unsaturated_expansions > 0
 
 

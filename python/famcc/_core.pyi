@@ -368,7 +368,10 @@ class Controller:
         large for eps, no estimate limits at differentiator order >= 4, the
         exact ZOH at order >= 4. While stepping with the applied input known
         (``applied`` passed or ``output_limits`` set), once, when the bounds
-        expanded although the actuator had headroom (``k_u`` too small).
+        were expanded although the actuator had headroom for half the envelope's
+        settling time in total (``diagnostics.unsaturated_expansions >=
+        0.5 settle_time / dt``: persistent, not a start-up transient or the
+        recovery after a saturation): ``k_u`` too small for the plant.
     """
 
     def __new__(

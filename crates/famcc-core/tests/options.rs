@@ -307,3 +307,24 @@ fn lint_names_the_parameter_rule_and_suggestion() {
     let lints: Vec<Lint> = cfg.lint().iter().map(|f| f.lint).collect();
     assert_eq!(lints, [Lint::Aliasing]);
 }
+
+#[test]
+fn integral_and_limits_in_f32() {
+    let b = builder::<f32, 3>(4.0)
+        .integral(true)
+        .output_limits(Some((-1.5, 1.5)))
+        .rate_limit(Some(100.0));
+    let mut c = Controller::new(b.build().unwrap());
+    let (mut x, mut v) = (0.5_f32, 0.0_f32);
+    let mut prev = None;
+    for _ in 0..20000 {
+        let u = c.step_output(x, 0.0, prev).unwrap();
+        assert!((-1.5..=1.5).contains(&u) && u.is_finite());
+        v += 1e-3 * (u - 1.0);
+        x += 1e-3 * v;
+        prev = Some(u);
+    }
+    let d = c.diagnostics();
+    assert!(d.integral.is_some_and(f32::is_finite));
+    assert!(x.abs() < 1e-2, "x = {x}");
+}

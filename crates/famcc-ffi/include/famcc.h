@@ -35,6 +35,11 @@
 #define FAMCC_MAX_STAGES 2
 
 /**
+ * The largest number of findings `*_lint` writes (one per kind of risk).
+ */
+#define FAMCC_MAX_FINDINGS 5
+
+/**
  * 64-bit words of storage per controller type: the controller and a tag
  * word (x86_64: 42, 80, 54, 103 words in use), plus ~25 % headroom so that
  * famcc-core can grow without an ABI change. Checked at compile time on
@@ -1198,6 +1203,27 @@ typedef struct FamccO3F64 {
   uint64_t _opaque[FAMCC_O3_F64_WORDS];
 } FamccO3F64;
 
+/**
+ * One legal but risky choice of a configuration (famcc-core's
+ * `Config::lint`): the parameter and the whole finding in words, naming the
+ * rule, the configuration's number and a suggested value (NUL-terminated,
+ * truncated if needed).
+ */
+typedef struct FamccFinding {
+  /**
+   * Zero-based stage for per-stage parameters, -1 otherwise.
+   */
+  int32_t stage;
+  /**
+   * The parameter to change (`dt`, `rho_e`, `k`, `estimate_limits`, ...).
+   */
+  char parameter[32];
+  /**
+   * The finding: the risk, the rule, the number and the suggestion.
+   */
+  char message[480];
+} FamccFinding;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1374,6 +1400,43 @@ FamccStatus famcc_o3_f64_reset(struct FamccO3F64 *c);
  * See `famcc_o2_f32_diagnostics`.
  */
 FamccStatus famcc_o3_f64_diagnostics(const struct FamccO3F64 *c, FamccDiagnosticsF64 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH
+ * at order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o2_f32_lint(const struct FamccO2F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `famcc_o2_f32_lint` for `FamccO2F64`.
+ */
+FamccStatus famcc_o2_f64_lint(const struct FamccO2F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `famcc_o2_f32_lint` for `FamccO3F32`.
+ */
+FamccStatus famcc_o3_f32_lint(const struct FamccO3F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `famcc_o2_f32_lint` for `FamccO3F64`.
+ */
+FamccStatus famcc_o3_f64_lint(const struct FamccO3F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
 
 #ifdef __cplusplus
 } // extern "C"

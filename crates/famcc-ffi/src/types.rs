@@ -383,6 +383,24 @@ pub struct FamccDiagnostics<T> {
     pub unsaturated_expansions: u64,
 }
 
+/// One legal but risky choice of a configuration (famcc-core's
+/// `Config::lint`): the parameter and the whole finding in words, naming the
+/// rule, the configuration's number and a suggested value (NUL-terminated,
+/// truncated if needed).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct FamccFinding {
+    /// Zero-based stage for per-stage parameters, -1 otherwise.
+    pub stage: i32,
+    /// The parameter to change (`dt`, `rho_e`, `k`, `estimate_limits`, ...).
+    pub parameter: [c_char; 32],
+    /// The finding: the risk, the rule, the number and the suggestion.
+    pub message: [c_char; 480],
+}
+
+/// The largest number of findings `*_lint` writes (one per kind of risk).
+pub const FAMCC_MAX_FINDINGS: usize = 5;
+
 /// Why a configuration was rejected (NUL-terminated, truncated if needed).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]

@@ -25,6 +25,10 @@ pub struct PyController {
     health_warned: bool,
 }
 
+/// The health warning fires once the bounds were expanded with headroom
+/// for this fraction of the envelope's settling time `T_s` (in samples).
+const HEALTH_FRACTION: f64 = 0.5;
+
 /// `2 atanh 0.5 = ln 3`: `k_u` must exceed the hold input divided by it.
 const TWO_ATANH_HALF: f64 = 1.0986122886681098;
 
@@ -68,7 +72,13 @@ impl PyController {
             return Ok(());
         }
         let n = self.core.unsaturated_expansions();
-        if n == 0 {
+        // Persistent, not a transient: expanded with headroom for half the
+        // envelope's settling time in total (the flexible boundary's recovery
+        // after a saturation, or a start-up transient, stays below it).
+        let persistent = (HEALTH_FRACTION * self.spec.settle_time / self.spec.dt)
+            .ceil()
+            .max(1.0);
+        if (n as f64) < persistent {
             return Ok(());
         }
         self.health_warned = true;
@@ -241,14 +251,16 @@ impl PyController {
         self.core.diagnostics()
     }
 
-    /// The estimate the next step will use (NumPy array).
+    /// The estimate the next step will use (NumPy array; with integral
+    /// action the integral `I` first, then the plant's `z1..zn`).
     #[getter]
     fn estimate<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.core.estimate())
     }
 
     /// The state as a float vector, laid out as `STATE_FIELDS` followed by
-    /// the estimate `z_hat[0..order]`.
+    /// the estimate `z_hat[0..order]` (with integral action `order + 1`
+    /// entries: the integral `I` first).
     fn state<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.core.state())
     }
