@@ -753,3 +753,125 @@ fn flexible_band_with_the_cubic_transition() {
     close(c.diagnostics().expansion, f, "cubic band factor");
     close(c.diagnostics().xi, s / eps / f, "xi~");
 }
+
+// ---------------------------------------------------------------------------
+// The corollaries' settling-time bounds (bounds.rs), by hand
+// ---------------------------------------------------------------------------
+
+/// At values where no two terms coincide: the paper's examples have `p = 0.5`
+/// (so `1 - p = p`) and `r_t - r_1 = 1` (so a quotient by it is a product),
+/// where a swapped term or operator gives the same number (mutation testing,
+/// docs/mutation.md).
+#[test]
+fn the_corollaries_bounds_by_hand() {
+    use famcc_core::bounds;
+    // eq. (42): |z1(0)|^(1-p) / (k (1-p)) with k = 2, p = 0.25, z1(0) = -3.
+    close(
+        bounds::finite_time(2.0, 0.25, -3.0),
+        3f64.powf(0.75) / 1.5,
+        "T_fn'",
+    );
+    // eq. (53) with k = 1.5, r_b = 0.4, r_1 = 2, r_t = 4:
+    // b = (2 - 0.4) / (4 - 2) = 0.8, a = (4 - 0.4) b = 2.88.
+    let damp = (-2.88 / (2.0 * std::f64::consts::E)).exp();
+    close(
+        bounds::variable_exponent(1.5, 0.4, 2.0, 4.0),
+        1.0 / (1.5 * 1.0) + 1.0 / (1.5 * damp * 0.6),
+        "T_fxe'",
+    );
+    // eq. (63): 1/(2 (1 - 0.25)) + 1/(4 (1.5 - 1)) = 2/3 + 1/2, and
+    // 1/(1 (1 - 0.6)) + 1/(0.5 (3 - 1)) = 2.5 + 1.
+    close(
+        bounds::fixed_time_stage(2.0, 0.25, 4.0, 1.5),
+        2.0 / 3.0 + 0.5,
+        "stage",
+    );
+    close(
+        bounds::fixed_time(&[(2.0, 0.25, 4.0, 1.5), (1.0, 0.6, 0.5, 3.0)]),
+        2.0 / 3.0 + 0.5 + 3.5,
+        "T_fr'",
+    );
+    assert_eq!(bounds::fixed_time::<f64>(&[]), 0.0);
+}
+
+// ---------------------------------------------------------------------------
+// The laws' parameter rules: each boundary, and the parameter named
+// ---------------------------------------------------------------------------
+
+#[test]
+fn every_law_rule_rejects_its_boundary_and_names_its_parameter() {
+    use Feedback as F;
+    let nan = f64::NAN;
+    let inf = f64::INFINITY;
+    let fin = |k, p| F::FiniteTime { k, p };
+    let fix = |alpha, p, beta, q| F::FixedTime { alpha, p, beta, q };
+    let ve = |k, r_b, r_1, r_t| F::VariableExponent { k, r_b, r_1, r_t };
+    let mo = |beta, lambda, mu| F::MoulayDiscontinuous { beta, lambda, mu };
+    let bad: [(F<f64>, &str); 27] = [
+        (F::Linear { k: 0.0 }, "k"),
+        (F::Linear { k: inf }, "k"),
+        (fin(-1.0, 0.5), "k"),
+        (fin(1.0, 0.0), "p"),
+        (fin(1.0, 1.0), "p"),
+        (fin(1.0, nan), "p"),
+        (fix(0.0, 0.5, 1.0, 2.0), "alpha"),
+        (fix(1.0, 0.5, nan, 2.0), "beta"),
+        (fix(1.0, 0.0, 1.0, 2.0), "p"),
+        (fix(1.0, 1.0, 1.0, 2.0), "p"),
+        (fix(1.0, 0.5, 1.0, 1.0), "q"),
+        (fix(1.0, 0.5, 1.0, inf), "q"),
+        (fix(1.0, 0.5, 1.0, nan), "q"),
+        (ve(0.0, 0.5, 2.0, 3.0), "k"),
+        (ve(1.0, 0.0, 2.0, 3.0), "r_b"),
+        (ve(1.0, 1.0, 2.0, 3.0), "r_b"),
+        (ve(1.0, 0.5, 1.0, 3.0), "r_1"),
+        (ve(1.0, 0.5, 0.9, 3.0), "r_1"),
+        (ve(1.0, 0.5, nan, 3.0), "r_1"),
+        (ve(1.0, 0.5, 2.0, 2.0), "r_t"),
+        (ve(1.0, 0.5, 2.0, inf), "r_t"),
+        (ve(1.0, 0.5, 2.0, nan), "r_t"),
+        (mo(0.0, 1.0, 0.1), "beta"),
+        (mo(1.0, 0.0, 0.1), "lambda"),
+        (mo(1.0, 1.0, -0.1), "mu"),
+        (mo(1.0, 1.0, inf), "mu"),
+        (mo(1.0, 1.0, nan), "mu"),
+    ];
+    for (law, parameter) in bad {
+        let err = law.validate().unwrap_err();
+        assert_eq!(err.parameter, parameter, "{law:?}: {err}");
+    }
+    let good: [F<f64>; 8] = [
+        F::Linear { k: 1e-300 },
+        fin(1.0, 1e-9),
+        fin(1.0, 1.0 - 1e-9),
+        fix(1.0, 0.5, 1.0, 1.0 + 1e-9),
+        ve(1.5, 0.5, 2.0, 3.0),
+        ve(1.5, 0.5, 1.0 + 1e-9, 3.0),
+        mo(1.0, 2.0, 0.0),
+        mo(1.0, 2.0, 1e300),
+    ];
+    for law in good {
+        assert!(law.validate().is_ok(), "{law:?}: {:?}", law.validate());
+    }
+}
+
+// ---------------------------------------------------------------------------
+// The fast paths of `Real::pow_nonneg` against `powf`
+// ---------------------------------------------------------------------------
+
+#[test]
+fn pow_nonneg_fast_paths_are_powers() {
+    use famcc_core::Real;
+    for x in [0.0, 0.3, 1.0, 2.3, 7.5e3] {
+        for p in [0.5, 1.0, 1.5, 2.0, 3.0, 0.7, 2.5] {
+            let want = f64::powf(x, p);
+            assert_close(x.pow_nonneg(p), want, 4e-16, &format!("{x}^{p}"));
+            let want32 = f32::powf(x as f32, p as f32);
+            let got32 = (x as f32).pow_nonneg(p as f32);
+            assert!(
+                (got32 - want32).abs() <= 2e-7 * want32.abs(),
+                "{x}^{p} in f32: {got32} vs {want32}"
+            );
+        }
+    }
+}
