@@ -840,6 +840,9 @@ fn every_law_rule_rejects_its_boundary_and_names_its_parameter() {
         let err = law.validate().unwrap_err();
         assert_eq!(err.parameter, parameter, "{law:?}: {err}");
     }
+    // r_b = 0 fails its own rule, not the monotonicity margin that follows it.
+    let err = ve(1.0, 0.0, 2.0, 3.0).validate().unwrap_err();
+    assert_eq!(err.rule, "must satisfy 0 < r_b < 1", "{err}");
     let good: [F<f64>; 8] = [
         F::Linear { k: 1e-300 },
         fin(1.0, 1e-9),
