@@ -878,3 +878,66 @@ fn pow_nonneg_fast_paths_are_powers() {
         }
     }
 }
+
+// ---------------------------------------------------------------------------
+// The root search behind h_v and x_c, and the snapshot's flat layout
+// ---------------------------------------------------------------------------
+
+#[test]
+fn decreasing_root_finds_far_and_badly_scaled_roots() {
+    use famcc_core::constraint::decreasing_root;
+    // Far from the start on either side: the bracket must grow (doubling steps).
+    for (root, x0) in [(10.0, 0.0), (-37.5, 0.0), (1e6, 3.0), (2f64.cbrt(), 0.0)] {
+        let r = decreasing_root(|x: f64| root * root * root - x * x * x, x0);
+        assert_close(r, root, 1e-14, &format!("root {root} from {x0}"));
+    }
+    // Slopes 1e-300 left and 1e300 right of the root: the secant lands on the
+    // bracket's end and the search must bisect inside the bracket.
+    let kinked = |x: f64| {
+        if x < 1.0 {
+            (1.0 - x) * 1e-300
+        } else {
+            (1.0 - x) * 1e300
+        }
+    };
+    assert_close(decreasing_root(kinked, 0.5), 1.0, 1e-14, "kinked");
+}
+
+#[test]
+fn snapshot_flat_layout_round_trips() {
+    let mut c = state_feedback2(
+        Feedback::FiniteTime { k: 1.0, p: 0.5 },
+        Constraint::Oblique {
+            eps_x: 0.1,
+            eps_y: 0.2,
+        },
+        5.0,
+        1e-3,
+        Gamma::Log,
+        Latch::Paper,
+        None,
+    );
+    let mut buf = [f64::NAN; 9];
+    for step in 0..3 {
+        let snap = c.snapshot();
+        assert_eq!(snap.started, step > 0);
+        snap.to_array(&mut buf).unwrap();
+        assert_eq!(buf[0], if step > 0 { 1.0 } else { 0.0 });
+        assert_eq!(famcc_core::Snapshot::<f64, 2>::from_array(&buf).unwrap(), snap);
+        c.step_state([0.4, -0.3]).unwrap();
+    }
+}
+
+/// `x^p` where `x0^p` underflows: the coefficients are rescaled through logs
+/// (`exp(p ln x0 + ln|r_k|)`), and the first derivative stays exact. (The
+/// second is `inf` here, not the finite value the doc of `Jet::powf`
+/// promises: `(x'/x0)^2 = 1e400` overflows before the rescaling.)
+#[test]
+fn jet_powf_rescales_an_underflowing_power_through_logs() {
+    use famcc_core::jet::Jet;
+    // x(t) = 1e-200 + t, p = 2.5: x0^p = 1e-500 underflows to 0;
+    // d/dt x^p = 2.5 x^1.5 = 2.5e-300.
+    let y = Jet::<f64, 3>::from_derivatives([1e-200, 1.0, 0.0]).powf(2.5);
+    assert_eq!(y.value(), 0.0);
+    assert_close(y.derivative(1), 2.5e-300, 1e-12, "d/dt");
+}
