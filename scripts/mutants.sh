@@ -51,10 +51,16 @@ while IFS= read -r line; do
     excludes+=(--exclude-re "^${fesc}:[0-9]+:[0-9]+: ${esc}\$")
 done <.cargo/mutants-equivalent.txt
 
-# The test command's own build directory and profile: the dependencies built
-# by `cargo test` are reused, only the mutated crates are built per mutant
-# (cargo-mutants builds in a copy of the tree, under another path).
-export CARGO_TARGET_DIR="$PWD/target"
+# A build directory of its own, kept between runs: the dependencies are built
+# once, only the mutated crates per mutant. Not the tree's own target/:
+# cargo names a workspace crate's artifacts by its path relative to the
+# workspace, so a mutant built there from cargo-mutants' copy would stand in
+# for the real crate until the copy is gone.
+export CARGO_TARGET_DIR="$PWD/target/mutants-build"
+# The closed loops run several times faster optimised; the tests' debug
+# assertions (and overflow checks) stay on; no debug info: faster links.
+export CARGO_PROFILE_TEST_OPT_LEVEL=1 CARGO_PROFILE_DEV_OPT_LEVEL=1
+export CARGO_PROFILE_TEST_DEBUG=0 CARGO_PROFILE_DEV_DEBUG=0
 # famcc-core is generic: every test binary compiles the mutated code anew, so
 # the test targets are what a mutant costs (--cargo-arg: built and run, the
 # build step included). Full runs: every unit and
