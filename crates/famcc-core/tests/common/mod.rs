@@ -42,6 +42,8 @@ pub struct Run {
     pub u: Vec<f64>,
     pub v: Vec<f64>,
     pub xi: Vec<f64>,
+    /// The nominal xi of eq. (28) (before the flexible expansion and the clamp).
+    pub xi_nominal: Vec<f64>,
     pub expanded: Vec<bool>,
     pub bounds: Vec<(f64, f64)>,
     pub nominal: Vec<(f64, f64)>,
@@ -65,6 +67,27 @@ impl Run {
     }
     pub fn max_abs_xi(&self) -> f64 {
         self.xi.iter().fold(0.0, |m, x| m.max(x.abs()))
+    }
+    pub fn max_abs_xi_nominal(&self) -> f64 {
+        self.xi_nominal.iter().fold(0.0, |m, x| m.max(x.abs()))
+    }
+    /// First time with |z1| < eps (None if never).
+    pub fn first_entry(&self, eps: f64) -> Option<f64> {
+        self.z1.iter().position(|z| z.abs() < eps).map(|i| self.t[i])
+    }
+    /// max |z1| over the last `window` seconds of the run.
+    pub fn final_abs_z1(&self, window: f64) -> f64 {
+        let end = self.t.last().copied().unwrap_or(0.0);
+        self.t
+            .iter()
+            .zip(&self.z1)
+            .filter(|(t, _)| **t >= end - window - 1e-12)
+            .fold(0.0, |m, (_, z)| m.max(z.abs()))
+    }
+    /// Fraction of samples at which the input was clipped.
+    pub fn saturated_fraction(&self) -> f64 {
+        let n = self.v.iter().zip(&self.u).filter(|(v, u)| v != u).count();
+        n as f64 / self.v.len().max(1) as f64
     }
     pub fn u_range(&self) -> (f64, f64) {
         self.u
@@ -104,6 +127,7 @@ pub fn run<T: Real, const N: usize, P: TimePlant<N>>(
         r.v.push(v);
         r.u.push(u);
         r.xi.push(d.xi.to_f64_lossless());
+        r.xi_nominal.push(d.xi_nominal.to_f64_lossless());
         r.expanded.push(d.expanded);
         r.bounds
             .push((d.bounds.0.to_f64_lossless(), d.bounds.1.to_f64_lossless()));
