@@ -8,7 +8,16 @@ import importlib.util
 import pytest
 
 #: Modules of the ``test`` extra (pyproject.toml) that tests import.
-REQUIRED = ("hypothesis", "mypy", "control", "simple_pid", "pandas", "pyarrow", "distributed")
+REQUIRED = (
+    "hypothesis",
+    "mypy",
+    "control",
+    "simple_pid",
+    "pandas",
+    "pyarrow",
+    "distributed",
+    "pyadrc",
+)
 
 
 def pytest_configure(config: pytest.Config) -> None:
