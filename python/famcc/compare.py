@@ -349,12 +349,16 @@ class Space:
     """A controller's documented parameter ranges; ``params(u)`` maps the unit cube.
 
     ``ranges`` maps each name to ``(lo, hi, log)``; ``fixed`` holds the
-    parameters that are not searched (e.g. ADRC's ``b0 = G``).
+    parameters that are not searched (e.g. ADRC's ``b0 = G``); ``default`` is
+    the controller's documented default setting (the paper's design for famcc,
+    the textbook pole placement for the peers), the first candidate the tuning
+    tries.
     """
 
     kind: str
     ranges: dict[str, tuple[float, float, bool]]
     fixed: dict[str, Any] = field(default_factory=dict)
+    default: dict[str, float] = field(default_factory=dict)
 
     @property
     def dims(self) -> int:
@@ -368,21 +372,43 @@ class Space:
             out[name] = lo * (hi / lo) ** x if log else lo + (hi - lo) * x
         return out
 
+    def unit(self, params: dict[str, float]) -> np.ndarray:
+        """The point of the unit cube of ``params`` (clipped to the ranges)."""
+        out = []
+        for name, (lo, hi, log) in self.ranges.items():
+            v = float(params[name])
+            x = math.log(v / lo) / math.log(hi / lo) if log else (v - lo) / (hi - lo)
+            out.append(min(max(x, 0.0), 1.0))
+        return np.array(out)
+
+
+#: The paper's k_u of examples 1-3 (famcc's default there; 1.5 H elsewhere).
+PAPER_K_U = {"example-1": 5.0, "example-2": 2.0, "example-3": 30.0}
+
 
 def famcc_candidates(
-    plant: Any, dt: float, *, order: int, family: str, band: float, gain: float, hold: float
+    plant: Any,
+    dt: float,
+    *,
+    order: int,
+    family: str,
+    band: float,
+    gain: float,
+    hold: float,
+    k_u: float | None = None,
 ) -> Space:
     """famcc's parameter ranges on a plant: the paper's designs, scaled.
 
-    Around the paper's settings (law gain 1, ``T_s = 1`` s, ``eps`` = the band,
-    ``mu = 0.01`` s, ``k_u`` about ``1.5 H``): law gain ``k`` (1/s) in [0.3, 10],
-    ``T_s`` in [0.1, 2] s, ``eps`` in [0.2, 1] x band (LaMC; LoMC designs scale
-    theirs with it), ``k_u`` in [0.3, 10] x ``H``, ``mu`` in [2, 30] ms, all
-    log-uniform. ``family`` picks the laws: ``"finite-time"`` (LaMC,
-    ``FiniteTime(k, 0.5)``), ``"variable-exponent"`` (LoMC + SSMD) or
-    ``"rfc"`` (LoMC, ``FixedTime`` stages + NSMD at any order >= 3). ``plant``,
-    ``dt`` and ``gain`` are for the design procedure that will replace these
-    ranges (``famcc.design``); the ranges need only ``hold`` and ``band``.
+    Around the paper's settings (the default: law gain ``k = 1``, ``T_s = 1`` s,
+    ``eps`` = the band, ``mu = 0.01`` s, ``k_u`` the paper's or ``1.5 H``): ``k``
+    (1/s) in [0.3, 10], ``T_s`` in [0.1, 2] s, ``eps`` in [0.2, 1] x band (LaMC;
+    LoMC designs scale theirs with it), ``k_u`` in [0.3, 30] x ``H``, ``mu`` in
+    [1, 30] ms, all log-uniform. ``family`` picks the laws: ``"finite-time"``
+    (LaMC, ``FiniteTime(k, 0.5)``, the paper's example 1 at the default),
+    ``"variable-exponent"`` (LoMC + SSMD, example 2) or ``"rfc"`` (LoMC,
+    ``FixedTime`` stages + NSMD at any order >= 3, example 3). ``plant``, ``dt``
+    and ``gain`` are for the design procedure that will replace these ranges
+    (``famcc.design``); the ranges need only ``hold`` and ``band``.
     """
     del plant, dt, gain
     if family not in ("finite-time", "variable-exponent", "rfc"):
@@ -393,30 +419,41 @@ def famcc_candidates(
             "k": (0.3, 10.0, True),
             "settle_time": (0.1, 2.0, True),
             "eps": (0.2 * band, band, True),
-            "k_u": (0.3 * hold, 10.0 * hold, True),
-            "mu": (2e-3, 3e-2, True),
+            "k_u": (0.3 * hold, 30.0 * hold, True),
+            "mu": (1e-3, 3e-2, True),
         },
         {"family": family, "order": order, "band": band},
+        {"k": 1.0, "settle_time": 1.0, "eps": band, "k_u": k_u or 1.5 * hold, "mu": 0.01},
     )
 
 
 def space(kind: str, case: Case, joint: int = 0) -> Space:
     """The parameter ranges of controller ``kind`` on ``case`` (joint ``joint``).
 
+    All log-uniform; the default (the first candidate) in brackets.
+
     * ``famcc``: :func:`famcc_candidates`.
-    * ``lmcc``: ``Linear(k)`` stages, ``k`` in [0.3, 30] 1/s; ``eps`` of the
-      LoMC on ``s`` in [0.1, 1] x band x ``k^(n-1)`` (given as the factor
-      ``eps_factor``); ``T_s``, ``k_u``, ``mu`` as famcc's.
-    * ``pid``: with a bandwidth ``w`` in [1, 100] rad/s, ``kp = cp w^n / G``,
-      ``kd = cd w^(n-1) / G``, ``ki = ci w^(n+1) / G`` (``cp, cd`` in [1, 10],
-      ``ci`` in [0.03, 3]; 3, 3, 1 place the poles of a double integrator at
-      ``-w``), measurement filter ``tf = ctf / w``, ``ctf`` in [1e-3, 0.3].
-    * ``adrc``: ``w_cl`` in [1, 100] rad/s, ``k_eso`` in [2, 10], ``b0 = G``.
+    * ``lmcc``: ``Linear(k)`` stages, ``k`` in [0.3, 30] 1/s (2); ``eps`` of the
+      LoMC on ``s`` = ``eps_factor`` x band x ``k^(n-1)``, ``eps_factor`` in
+      [0.1, 1] (0.5); ``T_s``, ``k_u``, ``mu`` as famcc's.
+    * ``pid``: with a bandwidth ``w`` in [1, 200] rad/s (10), ``kp = cp w^n / G``,
+      ``kd = cd w^(n-1) / G``, ``ki = ci w^(n+1) / G``; ``cp, cd`` in [0.5, 20]
+      (3), ``ci`` in [0.03, 3] (1): the default places the poles of a double
+      integrator at ``-w``; measurement filter ``tf = ctf / w``, ``ctf`` in
+      [1e-3, 0.3] (0.01).
+    * ``adrc``: ``w_cl`` in [1, 200] rad/s (10), ``k_eso`` in [2, 10] (5), ``b0 = G``.
     """
     g, h, n = case.gain[joint], case.hold[joint], case.order
     if kind == "famcc":
         return famcc_candidates(
-            None, DT, order=n, family=case.family, band=case.band, gain=g, hold=h
+            None,
+            DT,
+            order=n,
+            family=case.family,
+            band=case.band,
+            gain=g,
+            hold=h,
+            k_u=PAPER_K_U.get(case.name),
         )
     if kind == "lmcc":
         return Space(
@@ -425,26 +462,31 @@ def space(kind: str, case: Case, joint: int = 0) -> Space:
                 "k": (0.3, 30.0, True),
                 "eps_factor": (0.1, 1.0, True),
                 "settle_time": (0.1, 2.0, True),
-                "k_u": (0.3 * h, 10.0 * h, True),
-                "mu": (2e-3, 3e-2, True),
+                "k_u": (0.3 * h, 30.0 * h, True),
+                "mu": (1e-3, 3e-2, True),
             },
             {"order": n, "band": case.band},
+            {"k": 2.0, "eps_factor": 0.5, "settle_time": 1.0, "k_u": 1.5 * h, "mu": 0.01},
         )
     if kind == "pid":
         return Space(
             "pid",
             {
-                "w": (1.0, 100.0, True),
-                "cp": (1.0, 10.0, True),
-                "cd": (1.0, 10.0, True),
+                "w": (1.0, 200.0, True),
+                "cp": (0.5, 20.0, True),
+                "cd": (0.5, 20.0, True),
                 "ci": (0.03, 3.0, True),
                 "ctf": (1e-3, 0.3, True),
             },
             {"order": n, "gain": g},
+            {"w": 10.0, "cp": 3.0, "cd": 3.0, "ci": 1.0, "ctf": 0.01},
         )
     if kind == "adrc":
         return Space(
-            "adrc", {"w_cl": (1.0, 100.0, True), "k_eso": (2.0, 10.0, True)}, {"order": n, "b0": g}
+            "adrc",
+            {"w_cl": (1.0, 200.0, True), "k_eso": (2.0, 10.0, True)},
+            {"order": n, "b0": g},
+            {"w_cl": 10.0, "k_eso": 5.0},
         )
     raise ValueError(f"kind must be one of {', '.join(_KINDS)}, got {kind!r}")
 
@@ -476,7 +518,13 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
     if kind != "famcc":
         raise ValueError(f"kind must be one of {', '.join(_KINDS)}, got {kind!r}")
     hg = famcc.HighGain.default(n, mu=p["mu"])
-    common = {"settle_time": p["settle_time"], "k_u": p["k_u"], "differentiator": hg}
+    # the envelope latch of the authors' code, as `famcc reproduce` (variant "code") uses
+    common = {
+        "settle_time": p["settle_time"],
+        "k_u": p["k_u"],
+        "differentiator": hg,
+        "latch": "authors",
+    }
     k, eps = p["k"], p["eps"]
     if p["family"] == "finite-time":
         return famcc.Controller(
@@ -586,7 +634,7 @@ def metrics(case: Case, results: Sequence[Any], t_end: float) -> dict[str, Any]:
     never settled), ``final_rms`` (RMS of ``z1`` over the run's second half,
     worst), ``settling_time`` (worst), ``rms_u`` (largest), ``tv_u`` (TV(u) per
     s, summed), ``z1_ripple`` and ``u_ripple`` (peak-to-peak after settling,
-    worst), ``saturated`` (fraction, largest), ``diverged``, ``never_settled``
+    worst), ``saturated`` (share of samples with the input at a limit, largest), ``diverged``, ``never_settled``
     and ``objective`` (the tuning objective ``J``).
     """
     b = case.band
@@ -603,7 +651,7 @@ def metrics(case: Case, results: Sequence[Any], t_end: float) -> dict[str, Any]:
         "tv_u": float(sum(r.tv_u_per_s for r in results)),
         "z1_ripple": worst([r.z1_ripple(b) for r in results]),
         "u_ripple": worst([r.ripple(b) for r in results]),
-        "saturated": max(r.saturated_fraction for r in results),
+        "saturated": max(_at_limit(r) for r in results),
         "diverged": diverged,
         "never_settled": any(r.never_settled(b) for r in results),
     }
@@ -613,6 +661,20 @@ def metrics(case: Case, results: Sequence[Any], t_end: float) -> dict[str, Any]:
     tv = sum(r.tv_u_per_s / h for r, h in zip(results, case.hold))
     m["objective"] = m["iae"] / (b * t_end) + TV_WEIGHT * tv + 10.0 * m["never_settled"]
     return m
+
+
+def _at_limit(r: Any) -> float:
+    """Share of samples with the input at a limit: ``v`` outside, or ``u`` on it.
+
+    A peer clamps its own output to the limits (simple-pid, pyadrc), so its
+    ``v`` never lies outside them; ``u`` on a limit counts for all alike.
+    """
+    if r.u_limits is None or not len(r.u):
+        return 0.0
+    lo, hi = r.u_limits
+    tol = 1e-9 * max(1.0, abs(lo), abs(hi))
+    u = np.asarray(r.u)
+    return float(np.mean(np.asarray(r.saturated) | (u <= lo + tol) | (u >= hi - tol)))
 
 
 def _final_rms(r: Any) -> float | None:
@@ -768,7 +830,7 @@ def total_runs(
     budget, _ = tune_budget(quick)
     conds = QUICK_CONDITIONS if quick else CONDITIONS
     n_disp = dispersion_plants if dispersion_plants is not None else (2 if quick else 6)
-    per = budget + len(conds) - 1 + n_disp
+    per = budget + len(conds) - 2 + n_disp  # nominal is the tuning's best; dispersion: n_disp
     return per * len(_KINDS) * (n_cases if n_cases is not None else len(cases(quick)))
 
 
@@ -836,9 +898,10 @@ def _tune(
             )
 
     first = budget - budget // 2
-    record(
-        pool.map(tasks_for({key: _lhs(rngs[key], first, spaces[key][0].dims) for key in spaces}))
-    )
+    starts = {}
+    for key, sp in spaces.items():  # the default first, then a Latin hypercube
+        starts[key] = np.vstack([sp[0].unit(sp[0].default), _lhs(rngs[key], first - 1, sp[0].dims)])
+    record(pool.map(tasks_for(starts)))
     left = budget - first
     for r in range(rounds):
         m = left // (rounds - r)
@@ -1099,8 +1162,8 @@ def _radar_figure(scores: dict[str, dict[str, float]], title: str) -> Any:
 
     axes = [a for a, _, _ in RADAR if all(a in s for s in scores.values())]
     ang = np.linspace(0, 2 * np.pi, len(axes), endpoint=False).tolist()
-    fig = plt.figure(figsize=(4.6, 4.2), dpi=80)
-    ax = fig.add_subplot(projection="polar")
+    fig = plt.figure(figsize=(5.6, 4.2), dpi=80)
+    ax = fig.add_axes((0.14, 0.1, 0.6, 0.76), projection="polar")
     for kind, s in scores.items():
         vals = [0.05 + 0.95 * s[a] for a in axes]
         ax.plot(ang + ang[:1], vals + vals[:1], color=_COLOR[kind], label=_LABEL[kind], lw=1.6)
@@ -1111,8 +1174,7 @@ def _radar_figure(scores: dict[str, dict[str, float]], title: str) -> Any:
     ax.set_yticklabels(["worst", "", "best"], fontsize=6)
     ax.set_ylim(0, 1.05)
     ax.set_title(title, fontsize=9)
-    ax.legend(loc="upper right", bbox_to_anchor=(1.3, 1.12), fontsize=7)
-    fig.tight_layout()
+    ax.legend(loc="upper left", bbox_to_anchor=(1.12, 1.05), fontsize=7)
     return fig
 
 
@@ -1279,8 +1341,12 @@ def _intro(result: dict[str, Any]) -> list[str]:
         "",
         (
             f"**Tuning (the same for all four).** Budget {b} closed-loop runs per controller "
-            f"and plant on the nominal plant at 1 kHz: {b - b // 2} Latin-hypercube points "
-            f"over the controller's documented ranges (`famcc.compare.space`), then "
+            f"and plant on the nominal plant at 1 kHz: the controller's documented default "
+            "(famcc: the paper's design of the example, scaled by the plant's holding input "
+            "H elsewhere; PID and ADRC: pole placement at 10 rad/s), "
+            f"{b - b // 2 - 1} Latin-hypercube points over its documented ranges "
+            "(`famcc.compare.space`, every range log-uniform and scaled by the plant's gain "
+            "G, H and the band), then "
             f"{b // 2} in {rounds} rounds of Gaussian steps around the best so far. "
             "Objective `J = IAE / (band T) + 0.01 TV(u) / H + 10 [never settled]`, "
             "`J = 1e6` when diverged (`H` the plant's holding input). The best candidate is "
@@ -1299,7 +1365,8 @@ def _intro(result: dict[str, Any]) -> list[str]:
             "**Metrics.** IAE (int |z1| dt, output unit s, summed over joints); RMS z1 over "
             "the second half of the run; steady RMS and settling time to the band (- when "
             "never settled); RMS u; TV(u)/s (total variation of u per second); peak-to-peak "
-            "ripple of z1 and u after settling; saturated share of samples; flags. "
+            "ripple of z1 and u after settling; saturated: share of samples with the input "
+            "at a limit (the peers clamp their own output); flags. "
             "`famcc.SimResult` has them all (`iae`, `steady_rms`, `rms_u`, `tv_u_per_s`, "
             "`z1_ripple`, `ripple`, `diverged`, `never_settled`)."
         ),
