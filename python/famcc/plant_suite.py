@@ -167,8 +167,9 @@ def dc_motor(
         return -damp * x[1] - load * smooth_step(t, t_load, 0.005) / J
 
     def fast(t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
-        step = 0.5 * (1.0 + math.tanh((t - t_load) / 0.005))
-        return (x[1], gain * u - damp * x[1] - load * step / J)
+        # the generic path's arithmetic, operation for operation (families match it bit for bit)
+        step = float(0.5 * (1.0 + np.tanh((t - t_load) / 0.005)))
+        return (1.0 * x[1] + 0.0 * x[0], gain * u + (-damp * x[1] - load * step / J))
 
     return PhysicalPlant(
         g=[lambda x, t: 1.0, lambda x, t: gain],
@@ -212,7 +213,8 @@ def pendulum(
         return -(m * G0 * l * np.sin(x[0]) + b * x[1]) / inertia
 
     def fast(t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
-        return (x[1], gain * u - (m * G0 * l * math.sin(x[0]) + b * x[1]) / inertia)
+        f2 = -(m * G0 * l * float(np.sin(x[0])) + b * x[1]) / inertia
+        return (1.0 * x[1] + 0.0 * x[0], gain * u + f2)
 
     return PhysicalPlant(
         g=[lambda x, t: 1.0, lambda x, t: gain],
@@ -258,8 +260,8 @@ def quadrotor_altitude(
         return -G0 - drag * x[1] / mass
 
     def fast(t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
-        g = math.cos(tilt * math.sin(0.5 * t)) / mass
-        return (x[1], g * u - G0 - drag * x[1] / mass)
+        g = float(np.cos(tilt * np.sin(0.5 * t))) / mass + 0.0 * x[0]
+        return (1.0 * x[1] + 0.0 * x[0], g * u + (-G0 - drag * x[1] / mass))
 
     return PhysicalPlant(
         g=[lambda x, t: 1.0, g2],
@@ -313,10 +315,10 @@ def flexible_joint(
 
     def fast(t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
         return (
-            x[1],
-            k / J_link * x[2] - (k * x[0] + mgl * math.sin(x[0])) / J_link,
-            x[3],
-            u / J_motor + (k * (x[0] - x[2]) - b_motor * x[3]) / J_motor,
+            1.0 * x[1] + 0.0 * x[0],
+            k / J_link * x[2] + -(k * x[0] + mgl * float(np.sin(x[0]))) / J_link,
+            1.0 * x[3] + 0.0 * x[0],
+            1.0 / J_motor * u + (k * (x[0] - x[2]) - b_motor * x[3]) / J_motor,
         )
 
     return PhysicalPlant(
