@@ -18,6 +18,7 @@ REQUIRED = (
     "distributed",
     "nbclient",
     "ipykernel",
+    "pyadrc",
 )
 
 

@@ -94,9 +94,9 @@ __all__ = [
 
 
 def __getattr__(name: str) -> object:
-    # Heavier submodules load on first use: famcc.plot, famcc.interop.
+    # Heavier submodules load on first use: famcc.plot, famcc.interop, famcc.compare, ...
     import importlib
 
-    if name in {"plot", "interop", "cli"}:
+    if name in {"plot", "interop", "cli", "compare", "peers", "joints"}:
         return importlib.import_module(f"famcc.{name}")
     raise AttributeError(f"module 'famcc' has no attribute {name!r}")

@@ -52,6 +52,7 @@ __all__ = [
     "PhysicalPlant",
     "Plant",
     "StrictFeedback",
+    "TwoLinkArm",
     "dc_motor",
     "family",
     "flexible_joint",
@@ -60,6 +61,7 @@ __all__ = [
     "second_order",
     "smooth_step",
     "third_order",
+    "two_link_arm",
 ]
 
 #: The variants every paper plant supports (see docs/design.md §6.3).
@@ -455,6 +457,7 @@ def third_order(variant: str = "code", *, gain: float = 1.0, amp: float = 10.0,
 # The physical plant suite lives in its own module; re-exported here.
 # Vectorised families of these plants (famcc.campaigns); their home is famcc.families.
 from famcc.families import Family, FamilyPlant, family
+from famcc.joints import TwoLinkArm, two_link_arm
 from famcc.plant_suite import (
     PhysicalPlant,
     dc_motor,

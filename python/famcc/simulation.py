@@ -212,6 +212,18 @@ class SimResult:
     neg_f_over_g_error, derivatives_error : str or None
         Why ``-F/G``, or the error's derivatives ``z_2..z_n``, are unknown (the
         plant's own error text, or the missing ingredient); None when known.
+    z1_measured : ndarray or None
+        The error the controller was given, ``y + n - y_d`` (output unit), when
+        :func:`simulate` added measurement noise ``n``; None without noise.
+        ``z`` stays the true, noise-free error.
+    disturbance : ndarray or None
+        The input disturbance ``d`` added to the applied input (input unit),
+        held over each sample period like ``u``; None without one. The plant
+        receives ``u + d``.
+    diverged_at : float or None
+        Time (s) at which :func:`simulate` stopped the run because it diverged
+        (``|z1|`` beyond ``diverge_at``, or a non-finite state or controller
+        output); the arrays end with that sample. None when the run completed.
 
     Examples
     --------
@@ -226,6 +238,9 @@ class SimResult:
     settled to |z1| < 0.1 at 0.3 s (first entry 0.1 s)
     steady RMS 0.00707
     u ripple after settling 0 (peak-to-peak)
+    IAE 0.076 s
+    RMS u 0
+    TV(u) 0/s
     no controller diagnostics recorded (no xi, no bounds)
     no actuator limits
     """
@@ -259,6 +274,9 @@ class SimResult:
     reference_repr: str | None = None
     neg_f_over_g_error: str | None = None
     derivatives_error: str | None = None
+    z1_measured: np.ndarray | None = None
+    disturbance: np.ndarray | None = None
+    diverged_at: float | None = None
     _png: bytes | None = field(default=None, init=False, repr=False, compare=False)
 
     # -- what the run was --------------------------------------------------------
@@ -517,6 +535,64 @@ class SimResult:
         tail = np.asarray(self.u)[np.asarray(self.t) >= ts]
         return float(np.max(tail) - np.min(tail)) if tail.size else None
 
+    def z1_ripple(self, eps: float) -> float | None:
+        """Peak-to-peak of ``z1`` (output unit) from the settling time to ``eps`` on.
+
+        The residual oscillation of the error once settled: chattering of the
+        loop, or noise fed through it. None if never settled.
+        """
+        ts = self.settling_time(eps)
+        if ts is None:
+            return None
+        tail = self.z1[np.asarray(self.t) >= ts]
+        return float(np.max(tail) - np.min(tail)) if tail.size else None
+
+    @property
+    def iae(self) -> float:
+        """Integral of the absolute error, ``int |z1| dt`` (output unit times s).
+
+        The trapezoidal rule over the samples of the whole run (the true error,
+        not the measured one). NaN when ``z1`` is (a diverged run ends at its
+        last finite sample, so it stays finite).
+        """
+        a = np.abs(self.z1)
+        if a.size < 2:
+            return 0.0
+        return float(self.dt * (np.sum(a) - 0.5 * (a[0] + a[-1])))
+
+    @property
+    def rms_u(self) -> float:
+        """Root mean square of the applied input ``u`` over the run (input unit).
+
+        The control effort; for a plant that needs a holding input (gravity, a
+        load) it includes that share.
+        """
+        u = np.asarray(self.u, dtype=float)
+        return float(np.sqrt(np.mean(np.square(u)))) if u.size else 0.0
+
+    @property
+    def tv_u_per_s(self) -> float:
+        """Total variation of the applied input per second, ``sum |u_k+1 - u_k| / T``.
+
+        In input units per s, over the run's duration ``T``: how much the
+        actuator moves, i.e. chattering and noise in the input. A smooth input
+        of amplitude ``A`` and frequency ``f`` scores about ``4 A f``.
+        """
+        u = np.asarray(self.u, dtype=float)
+        duration = float(self.t[-1] - self.t[0]) if len(self.t) > 1 else 0.0
+        if duration <= 0:
+            return 0.0
+        return float(np.sum(np.abs(np.diff(u))) / duration)
+
+    @property
+    def diverged(self) -> bool:
+        """True when :func:`simulate` stopped the run as diverged (see ``diverged_at``)."""
+        return self.diverged_at is not None
+
+    def never_settled(self, eps: float) -> bool:
+        """True when ``|z1| < eps`` does not hold up to the end (or the run diverged)."""
+        return self.diverged or self.settling_time(eps) is None
+
     def _eps(self, eps: float | None) -> float | None:
         return self.accuracy if eps is None else self._check_eps(eps)
 
@@ -535,6 +611,9 @@ class SimResult:
         Summary
             A ``dict`` with ``eps``, ``settling_time``, ``first_entry``,
             ``steady_rms``, ``ripple`` (peak-to-peak ``u`` after settling),
+            ``z1_ripple`` (peak-to-peak ``z1`` after settling), ``iae``,
+            ``rms_u``, ``tv_u_per_s``, ``diverged``, ``diverged_at``,
+            ``never_settled``,
             ``max_abs_xi_nominal``, ``max_abs_xi``, ``expanded_fraction``,
             ``expanded_unsaturated_fraction``, ``saturated_fraction``, ``u_min``,
             ``u_max``, ``saturation_episodes`` (their number),
@@ -568,6 +647,13 @@ class SimResult:
             "expanded_unsaturated_fraction": self.expanded_unsaturated_fraction,
             "steady_rms": None if e is None else self.steady_rms(e),
             "ripple": None if e is None else self.ripple(e),
+            "z1_ripple": None if e is None else self.z1_ripple(e),
+            "iae": self.iae,
+            "rms_u": self.rms_u,
+            "tv_u_per_s": self.tv_u_per_s,
+            "diverged": self.diverged,
+            "diverged_at": self.diverged_at,
+            "never_settled": None if e is None else self.never_settled(e),
             "u_min": self.u_min,
             "u_max": self.u_max,
             "saturated_fraction": self.saturated_fraction,
@@ -620,6 +706,12 @@ class SimResult:
             )
             exp = m["expanded_unsaturated_fraction"]
             second = f"{nominal}; expanded while unsaturated {_pct(exp)}; {sat}"
+        first += (
+            f"; IAE {m['iae']:.3g}{ou} s; RMS u {m['rms_u']:.3g}{iu}; "
+            f"TV(u) {m['tv_u_per_s']:.3g}{iu}/s"
+        )
+        if m["diverged"]:
+            first = f"DIVERGED at {m['diverged_at']:.4g} s (the run was stopped); " + first
         lines = [first, second]
         missing = []
         if self.neg_f_over_g_error:
@@ -875,6 +967,10 @@ def simulate(
     *,
     output: Any = None,
     input: Any = None,
+    noise: float | Callable[[float], float] | None = None,
+    seed: int | np.random.Generator | None = None,
+    disturbance: float | Callable[[float], float] | None = None,
+    diverge_at: float | None = None,
 ) -> SimResult:
     """Run a sampled-and-held closed loop and record it.
 
@@ -917,6 +1013,27 @@ def simulate(
         e.g. ``output=("angle", "rad")``, ``input=("voltage", "V")``. Default:
         the plant's ``output`` / ``input`` attributes, else ``"y"`` and ``"u"``
         without units.
+    noise : float, callable or None
+        Measurement noise on the output, in its unit: the controller is given
+        ``e_k = y(t_k) + n_k - y_d(t_k)``. A float is the standard deviation
+        of white Gaussian noise drawn per sample from
+        ``numpy.random.default_rng(seed)``; a callable ``noise(t) -> float``
+        gives ``n_k`` itself. The recorded ``z`` stays the true error, the
+        measured one is ``SimResult.z1_measured``. None or 0: no noise.
+    seed : int, numpy.random.Generator or None
+        Seed (or generator) of the Gaussian noise, for reproducible runs.
+    disturbance : float, callable or None
+        An input disturbance ``d`` (input unit) added to the applied input: the
+        plant receives ``u_k + d(t_k)`` over ``[t_k, t_k + dt)``, the controller
+        is told ``u_k`` (it does not know ``d``). A float is a constant ``d``;
+        a callable is ``d(t) -> float``. Recorded as ``SimResult.disturbance``.
+    diverge_at : float or None
+        Stop the run, flagged ``SimResult.diverged``, at the first sample with
+        ``|z1| > diverge_at`` (output unit) or a non-finite controller output or
+        plant state; the arrays then end with that sample (its ``v`` as the
+        controller gave it, ``u`` the input still held) and ``diverged_at`` holds
+        its time. None (the default) runs to the end and
+        raises :class:`FloatingPointError` on non-finite values.
 
     Returns
     -------
@@ -1003,6 +1120,18 @@ def simulate(
             stacklevel=2,
         )
     ref_fn, ref_order = _reference_derivatives(reference, n)
+    noise_fn = _signal_fn("noise", noise, seed)
+    dist_fn = _signal_fn("disturbance", disturbance, None)
+    if diverge_at is not None and not (
+        _is_number(diverge_at) and math.isfinite(diverge_at) and diverge_at > 0
+    ):
+        raise ValueError(f"diverge_at must be None or a finite number > 0, got {diverge_at!r}")
+    if diverge_at is not None:
+        e0 = abs(float(np.asarray(plant.x0, dtype=float).reshape(-1)[0]) - float(ref_fn(0.0)[0]))
+        if not e0 <= diverge_at:
+            raise ValueError(
+                f"diverge_at ({diverge_at}) must be at least the initial error |z1(0)| ({e0:.6g})"
+            )
     out_signal = Signal.of(output if output is not None else getattr(plant, "output", None), "y")
     in_signal = Signal.of(input if input is not None else getattr(plant, "input", None), "u")
     ctrl_repr, ctrl_config = _describe_controller(controller)
@@ -1045,6 +1174,9 @@ def simulate(
         ex_arr = np.zeros(K, dtype=bool)
     clamp_count = 0
     unsaturated: int | None = None
+    zm_arr = np.full(K, np.nan) if noise_fn is not None else None
+    d_arr = np.zeros(K) if dist_fn is not None else None
+    stop: int | None = None  # the first sample not kept when the run diverged
 
     # -- loop -------------------------------------------------------------------
     u_prev: float | None = None
@@ -1056,13 +1188,46 @@ def simulate(
             yd = ref_fn(t)
             y = float(x[0])
             e = y - float(yd[0])
-            v = controller.step(e, applied=u_prev)
+            if diverge_at is not None and not abs(e) <= diverge_at:
+                _keep_row(
+                    k,
+                    t,
+                    y,
+                    yd[0],
+                    x,
+                    e,
+                    math.nan,
+                    u_prev,
+                    y_arr,
+                    yd_arr,
+                    x_arr,
+                    z_arr,
+                    v_arr,
+                    u_arr,
+                )
+                stop = k + 1
+                break
+            e_meas = e
+            if noise_fn is not None and zm_arr is not None:
+                e_meas = e + float(noise_fn(t))
+                zm_arr[k] = e_meas
+            v = controller.step(e_meas, applied=u_prev)
             v = float(v)
             if not math.isfinite(v):
+                if diverge_at is not None:
+                    _keep_row(
+                        k, t, y, yd[0], x, e, v, u_prev, y_arr, yd_arr, x_arr, z_arr, v_arr, u_arr
+                    )
+                    stop = k + 1
+                    break
                 raise FloatingPointError(
                     f"controller returned a non-finite output at t = {t:.6g} s"
                 )
             u = v if limits is None else min(max(v, limits[0]), limits[1])
+            u_plant = u
+            if dist_fn is not None and d_arr is not None:
+                d_arr[k] = float(dist_fn(t))
+                u_plant = u + d_arr[k]
 
             y_arr[k], yd_arr[k], v_arr[k], u_arr[k] = y, yd[0], v, u
             x_arr[k] = x
@@ -1098,15 +1263,21 @@ def simulate(
             if k < K - 1:
                 try:
                     if fast is not None:
-                        x = np.array(_rk4_fast(fast, t, x.tolist(), u, h, substeps))
+                        x = np.array(_rk4_fast(fast, t, x.tolist(), u_plant, h, substeps))
                     else:
-                        x = _rk4(plant, t, x, u, h, substeps)
+                        x = _rk4(plant, t, x, u_plant, h, substeps)
                 except (OverflowError, ValueError, ZeroDivisionError) as exc:
+                    if diverge_at is not None:
+                        stop = k + 1
+                        break
                     raise FloatingPointError(
                         f"plant integration failed between t = {t:.6g} s and "
                         f"t = {t + dt:.6g} s: {exc}"
                     ) from exc
                 if not np.all(np.isfinite(x)):
+                    if diverge_at is not None:
+                        stop = k + 1
+                        break
                     raise FloatingPointError(
                         f"plant state became non-finite between t = {t:.6g} s and "
                         f"t = {t + dt:.6g} s: {x.tolist()}"
@@ -1141,4 +1312,85 @@ def simulate(
         # Controllers without these diagnostics (duck-typed ones) leave them unknown.
         result.xi_nominal = None if np.all(np.isnan(xin_arr)) else xin_arr
         result.expansion = None if np.all(np.isnan(fac_arr)) else fac_arr
+    result.z1_measured, result.disturbance = zm_arr, d_arr
+    if stop is not None:
+        _truncate(result, stop)
+        result.diverged_at = float(t_arr[stop - 1])
     return result
+
+
+def _keep_row(
+    k: int,
+    t: float,
+    y: float,
+    yd: float,
+    x: np.ndarray,
+    e: float,
+    v: float,
+    u_prev: float | None,
+    *arrays: np.ndarray,
+) -> None:
+    """Records sample ``k`` of a run stopped there: the state, ``v`` as it came, ``u`` held."""
+    y_arr, yd_arr, x_arr, z_arr, v_arr, u_arr = arrays
+    y_arr[k], yd_arr[k], x_arr[k], z_arr[k, 0] = y, yd, x, e
+    v_arr[k], u_arr[k] = v, 0.0 if u_prev is None else u_prev
+
+
+def _signal_fn(
+    label: str, value: float | Callable[[float], float] | None, seed: Any
+) -> Callable[[float], float] | None:
+    """``noise=`` / ``disturbance=`` as a function of t (None when absent)."""
+    if value is None:
+        return None
+    if callable(value):
+        fn = value
+        try:
+            probe = float(fn(0.0))
+        except Exception as exc:
+            raise ValueError(f"{label} could not be evaluated at t = 0: {exc}") from exc
+        if not math.isfinite(probe):
+            raise ValueError(f"{label}(0.0) must be finite, got {probe!r}")
+        return fn
+    if not _is_number(value) or not math.isfinite(value):
+        raise ValueError(f"{label} must be None, a finite number or a callable of t, got {value!r}")
+    level = float(value)
+    if label == "disturbance":
+        return None if level == 0 else (lambda t: level)
+    if level < 0:
+        raise ValueError(f"noise (a standard deviation) must be >= 0, got {value!r}")
+    if level == 0:
+        return None
+    try:
+        rng = np.random.default_rng(seed)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"seed must be None, an int or a numpy Generator, got {seed!r}") from exc
+    return lambda t: level * float(rng.standard_normal())
+
+
+def _truncate(result: SimResult, k: int) -> None:
+    """Keep the first ``k`` samples of every per-sample array of ``result``."""
+    for name in (
+        "t",
+        "y",
+        "y_d",
+        "x",
+        "z",
+        "v",
+        "u",
+        "z_hat",
+        "xi",
+        "s",
+        "s_prev",
+        "ds_prev",
+        "bounds",
+        "nominal_bounds",
+        "expanded",
+        "neg_f_over_g",
+        "xi_nominal",
+        "expansion",
+        "z1_measured",
+        "disturbance",
+    ):
+        arr = getattr(result, name)
+        if arr is not None:
+            setattr(result, name, arr[:k])
