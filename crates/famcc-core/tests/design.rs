@@ -33,7 +33,10 @@ fn time_scales_follow_the_phase_budget() {
         let full = (2 * d.law_order - 1) as f64 / b;
         // the ratio starts capped and widens (up to the full count) only for stability
         let ratio = 2.0 / d.mu / d.loop_rate;
-        assert!(ratio >= capped * (1.0 - 1e-9) && ratio <= full * (1.0 + 1e-9), "order {n}");
+        assert!(
+            ratio >= capped * (1.0 - 1e-9) && ratio <= full * (1.0 + 1e-9),
+            "order {n}"
+        );
         assert!((d.loop_rate / d.lambda - ratio).abs() < 1e-9 * ratio);
         assert!(d.mu >= 10.0 * 1e-3);
         // the loop rate is what k_u, gain and eps_s make it
