@@ -79,10 +79,10 @@ DESIGNS = {  # name -> (scenario, order, criterion id)
 }
 TRANSIENT = 1000  # samples with t < T_s = 1 s
 TARGETS = {
-    "order2_vs_floor": 1.3,     # step <= 1.3 x (noop + native)
-    "order2_ns": 200.0,         # step <= 200 ns
-    "vs_simple_pid": 10.0,      # >= 10x faster than simple-pid
-    "vs_reference": 15.0,       # >= 15x faster than the pure-Python reference
+    "order2_vs_floor": 1.3,  # step <= 1.3 x (noop + native)
+    "order2_ns": 200.0,  # step <= 200 ns
+    "vs_simple_pid": 10.0,  # >= 10x faster than simple-pid
+    "vs_reference": 15.0,  # >= 15x faster than the pure-Python reference
     "bank_1e5_steps_per_s": 10e6,
 }
 
@@ -131,7 +131,7 @@ class Replay:
         self.calls = self.chunks * len(self.inputs)
         self.group = group
         self.meta = meta or {}
-        self.samples: list[float] = []      # wall clock (perf_counter_ns), ns/call
+        self.samples: list[float] = []  # wall clock (perf_counter_ns), ns/call
         self.cpu_samples: list[float] = []  # this thread's CPU time, ns/call
 
     def record(self, wall: int, cpu: int) -> None:
@@ -163,7 +163,7 @@ def stepper(ctrl, errors, phase, calls, name, group, meta):
         for e in errors[:TRANSIENT]:
             ctrl.step(e)
         state = ctrl.state()
-        inputs = errors[TRANSIENT:TRANSIENT + min(calls, len(errors) - TRANSIENT)]
+        inputs = errors[TRANSIENT : TRANSIENT + min(calls, len(errors) - TRANSIENT)]
 
         def rewind(ctrl=ctrl, state=state):
             ctrl.set_state(state)
@@ -178,23 +178,35 @@ NOOP = "noop: _CallFloor.step(e)"
 def build_candidates(records, calls_compiled, calls_python):
     cands = []
     e_ft = records["finite-time"]
-    cands.append(Replay("loop (empty body)", lambda e: None, e_ft, None, calls_compiled,
-                        "floor"))
+    cands.append(Replay("loop (empty body)", lambda e: None, e_ft, None, calls_compiled, "floor"))
     # replace the lambda by a true empty loop body: time the bare for-loop
     cands[-1].run = _empty_loop_runner(cands[-1])
-    cands.append(Replay(NOOP, famcc._core._CallFloor().step, e_ft, None, calls_compiled,
-                        "floor"))
+    cands.append(Replay(NOOP, famcc._core._CallFloor().step, e_ft, None, calls_compiled, "floor"))
     for design, (scen, order, _) in DESIGNS.items():
         for phase in ("transient", "settled"):
             ctrl = famcc.scenarios.paper(scen, "code").controller(DT)
-            cands.append(stepper(ctrl, records[design], phase, calls_compiled,
-                                 f"famcc {design}/{phase}", "famcc",
-                                 {"design": design, "phase": phase, "order": order}))
+            cands.append(
+                stepper(
+                    ctrl,
+                    records[design],
+                    phase,
+                    calls_compiled,
+                    f"famcc {design}/{phase}",
+                    "famcc",
+                    {"design": design, "phase": phase, "order": order},
+                )
+            )
     # the optional argument's cost: step(e, applied) with applied = the same float
     ctrl = famcc.scenarios.paper("finite-time", "code").controller(DT)
-    c = stepper(ctrl, e_ft, "settled", calls_compiled, "famcc finite-time/settled "
-                "step(e, applied)", "famcc-applied", {"design": "finite-time",
-                                                     "phase": "settled", "order": 2})
+    c = stepper(
+        ctrl,
+        e_ft,
+        "settled",
+        calls_compiled,
+        "famcc finite-time/settled step(e, applied)",
+        "famcc-applied",
+        {"design": "finite-time", "phase": "settled", "order": 2},
+    )
     step = ctrl.step
     c.fn = lambda e, step=step: step(e, e)
     c.run = _applied_runner(c, step)
@@ -203,17 +215,33 @@ def build_candidates(records, calls_compiled, calls_python):
         for phase in ("transient", "settled"):
             kw = famcc.scenarios.paper(scen, "code").controller_kwargs
             ref = ReferenceController.from_kwargs(dt=DT, **kw)
-            cands.append(stepper(ref, records[design], phase, calls_python,
-                                 f"reference {design}/{phase}", "reference",
-                                 {"design": design, "phase": phase, "order": order}))
+            cands.append(
+                stepper(
+                    ref,
+                    records[design],
+                    phase,
+                    calls_python,
+                    f"reference {design}/{phase}",
+                    "reference",
+                    {"design": design, "phase": phase, "order": order},
+                )
+            )
     try:
         from simple_pid import PID
     except ImportError:  # pragma: no cover - optional
         print("simple-pid not installed: skipped", file=sys.stderr)
     else:
         pid = PID(1, 0.1, 0.05, setpoint=0, sample_time=None)
-        cands.append(Replay("simple-pid PID(1, 0.1, 0.05)(x)", pid, e_ft, pid.reset,
-                            calls_python * 5, "simple-pid"))
+        cands.append(
+            Replay(
+                "simple-pid PID(1, 0.1, 0.05)(x)",
+                pid,
+                e_ft,
+                pid.reset,
+                calls_python * 5,
+                "simple-pid",
+            )
+        )
     return cands
 
 
@@ -230,6 +258,7 @@ def _empty_loop_runner(c: Replay):
             cpu += thread_ns() - c0
             wall += t1 - t0
         c.record(wall, cpu)
+
     return run
 
 
@@ -247,6 +276,7 @@ def _applied_runner(c: Replay, step):
             cpu += thread_ns() - c0
             wall += t1 - t0
         c.record(wall, cpu)
+
     return run
 
 
@@ -267,8 +297,15 @@ class BankCase:
     of the native step measured with the same clock in the same rounds.
     """
 
-    def __init__(self, n: int, phase: str, errors: list[float], design: str = "finite-time",
-                 mode: str = "throughput", seed: int = 0):
+    def __init__(
+        self,
+        n: int,
+        phase: str,
+        errors: list[float],
+        design: str = "finite-time",
+        mode: str = "throughput",
+        seed: int = 0,
+    ):
         self.n, self.phase, self.design, self.mode = n, phase, design, mode
         ctrl = famcc.scenarios.paper(DESIGNS[design][0], "code").controller(DT)
         rec = np.asarray(errors)
@@ -280,7 +317,7 @@ class BankCase:
                 start = TRANSIENT
             self.ctrl = ctrl
             self.calls = TRANSIENT
-            self.inputs = [np.full(n, x) for x in rec[start:start + self.calls]]
+            self.inputs = [np.full(n, x) for x in rec[start : start + self.calls]]
             self.bank = famcc.ControllerBank(ctrl, n)
         else:
             start = 0
@@ -292,9 +329,11 @@ class BankCase:
             self.calls = max(2, 10**6 // n)
             offsets = np.random.default_rng(seed).integers(0, 500, size=n)
             span = len(rec) - start - 600
-            self.inputs = [np.ascontiguousarray(rec[start + (k % span) + offsets])
-                           for k in range(min(self.calls, 8))]
-        self.samples: list[float] = []      # steps per second, wall clock
+            self.inputs = [
+                np.ascontiguousarray(rec[start + (k % span) + offsets])
+                for k in range(min(self.calls, 8))
+            ]
+        self.samples: list[float] = []  # steps per second, wall clock
         # steps per CPU-second of the whole process: banks of N >= 16384 step on
         # several threads, so this is per-core efficiency, not throughput
         self.cpu_samples: list[float] = []
@@ -342,8 +381,9 @@ def native_from_args(spec: str | None) -> dict[str, float]:
         elif key in DESIGNS:
             out[key] = ns
         else:
-            raise SystemExit(f"--native-ns: unknown key {key!r} (order2, order3, "
-                             f"{', '.join(DESIGNS)})")
+            raise SystemExit(
+                f"--native-ns: unknown key {key!r} (order2, order3, {', '.join(DESIGNS)})"
+            )
     return out
 
 
@@ -367,8 +407,7 @@ def native_from_criterion(root: Path) -> dict[tuple[str, str], float]:
 
 def summary(xs: list[float]) -> dict[str, float]:
     q = statistics.quantiles(xs, n=4) if len(xs) >= 2 else [xs[0]] * 3
-    return {"median": statistics.median(xs), "min": min(xs), "max": max(xs),
-            "iqr": q[2] - q[0]}
+    return {"median": statistics.median(xs), "min": min(xs), "max": max(xs), "iqr": q[2] - q[0]}
 
 
 def paired_ratio(a: list[float], b: list[float]) -> float:
@@ -379,23 +418,33 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--rounds", type=int, default=21)
     ap.add_argument("--calls", type=int, default=20000, help="calls per batch, compiled")
-    ap.add_argument("--calls-python", type=int, default=2000,
-                    help="calls per batch, pure Python")
-    ap.add_argument("--native-ns", default=None,
-                    help="native step ns: order2=NN,order3=NN or finite-time=NN,...")
-    ap.add_argument("--native", choices=("proxy", "criterion"), default="proxy",
-                    help="where native step times come from without --native-ns: the "
-                         "in-harness ControllerBank proxy (same clock, same rounds) or "
-                         "criterion's estimates.json under --criterion-dir")
+    ap.add_argument("--calls-python", type=int, default=2000, help="calls per batch, pure Python")
+    ap.add_argument(
+        "--native-ns",
+        default=None,
+        help="native step ns: order2=NN,order3=NN or finite-time=NN,...",
+    )
+    ap.add_argument(
+        "--native",
+        choices=("proxy", "criterion"),
+        default="proxy",
+        help="where native step times come from without --native-ns: the "
+        "in-harness ControllerBank proxy (same clock, same rounds) or "
+        "criterion's estimates.json under --criterion-dir",
+    )
     ap.add_argument("--criterion-dir", default=str(ROOT / "target" / "criterion"))
     ap.add_argument("--no-bank", action="store_true")
     ap.add_argument("--quick", action="store_true", help="5 rounds, smaller batches")
     ap.add_argument("--json", default=None, help="write all samples and the summary here")
     ap.add_argument("--seed", type=int, default=12345)
-    ap.add_argument("--clock", choices=("wall", "cpu"), default="wall",
-                    help="clock for the table's main columns, ratios and targets: wall "
-                         "(perf_counter_ns) or cpu (thread_time_ns: excludes time the "
-                         "thread was descheduled; use on a loaded machine)")
+    ap.add_argument(
+        "--clock",
+        choices=("wall", "cpu"),
+        default="wall",
+        help="clock for the table's main columns, ratios and targets: wall "
+        "(perf_counter_ns) or cpu (thread_time_ns: excludes time the "
+        "thread was descheduled; use on a loaded machine)",
+    )
     args = ap.parse_args(argv)
     if args.quick:
         args.rounds, args.calls, args.calls_python = 5, 5000, 500
@@ -413,20 +462,37 @@ def main(argv=None) -> int:
     }
     print(f"famcc {info['famcc']} extension build: {info['build']}")
     if "debug" in info["build"]:
-        print("WARNING: debug build; numbers are meaningless. Rebuild with `pip install -e .`"
-              " (maturin's PEP 517 backend builds the release profile).", file=sys.stderr)
-    print(f"python {info['python']} on {info['platform']}, {info['cpus']} cpus; "
-          f"{args.rounds} rounds", flush=True)
+        print(
+            "WARNING: debug build; numbers are meaningless. Rebuild with `pip install -e .`"
+            " (maturin's PEP 517 backend builds the release profile).",
+            file=sys.stderr,
+        )
+    print(
+        f"python {info['python']} on {info['platform']}, {info['cpus']} cpus; {args.rounds} rounds",
+        flush=True,
+    )
 
     records = {d: record(d) for d in DESIGNS}
     cands = build_candidates(records, args.calls, args.calls_python)
-    banks = [] if args.no_bank else [BankCase(n, ph, records["finite-time"])
-                                     for n in (10**3, 10**5, 10**6)
-                                     for ph in ("transient", "settled")]
-    proxies = [BankCase(1000, ph, records[d], design=d, mode="proxy")
-               for d in DESIGNS for ph in ("transient", "settled")]
-    native = {(d, ph): ns for d, ns in native_from_args(args.native_ns).items()
-              for ph in ("transient", "settled")}
+    banks = (
+        []
+        if args.no_bank
+        else [
+            BankCase(n, ph, records["finite-time"])
+            for n in (10**3, 10**5, 10**6)
+            for ph in ("transient", "settled")
+        ]
+    )
+    proxies = [
+        BankCase(1000, ph, records[d], design=d, mode="proxy")
+        for d in DESIGNS
+        for ph in ("transient", "settled")
+    ]
+    native = {
+        (d, ph): ns
+        for d, ns in native_from_args(args.native_ns).items()
+        for ph in ("transient", "settled")
+    }
     native_src = "--native-ns" if native else None
     if not native and args.native == "criterion":
         native = native_from_criterion(Path(args.criterion_dir))
@@ -452,10 +518,13 @@ def main(argv=None) -> int:
     print(file=sys.stderr)
     if not native:
         xs_name = "samples" if args.clock == "wall" else "cpu_samples"
-        native = {(p.design, p.phase): 1e9 / statistics.median(getattr(p, xs_name))
-                  for p in proxies}
-        native_src = (f"in-harness proxy: ControllerBank N=1000 ns/step ({args.clock} clock; "
-                      "native step + bank loop, an upper bound)")
+        native = {
+            (p.design, p.phase): 1e9 / statistics.median(getattr(p, xs_name)) for p in proxies
+        }
+        native_src = (
+            f"in-harness proxy: ControllerBank N=1000 ns/step ({args.clock} clock; "
+            "native step + bank loop, an upper bound)"
+        )
     report = analyse(cands, banks + proxies, native, native_src, args.clock)
     if args.json:
         Path(args.json).write_text(json.dumps({"info": info, **report}, indent=1))
@@ -477,17 +546,27 @@ def analyse(cands, banks, native, native_src, clock):
     loop = by["loop (empty body)"]
     pid = by.get("simple-pid PID(1, 0.1, 0.05)(x)")
     rows = []
-    print(f"\nclock: {clock} (ratios: medians of per-round ratios; other clock's median "
-          f"in column '{other_name}')")
-    print(f"{'candidate':46s} {'median':>8s} {'min':>8s} {'IQR':>7s} {other_name:>8s} "
-          f"{'-loop':>7s} {'/noop':>6s} {'/(noop+nat)':>11s} {'pid/x':>6s} {'ref/x':>6s}")
+    print(
+        f"\nclock: {clock} (ratios: medians of per-round ratios; other clock's median "
+        f"in column '{other_name}')"
+    )
+    print(
+        f"{'candidate':46s} {'median':>8s} {'min':>8s} {'IQR':>7s} {other_name:>8s} "
+        f"{'-loop':>7s} {'/noop':>6s} {'/(noop+nat)':>11s} {'pid/x':>6s} {'ref/x':>6s}"
+    )
     print(f"{'':46s} {'ns/call':>8s} {'ns/call':>8s} {'ns':>7s} {'ns/call':>8s} {'ns':>7s}")
     for c in cands:
         s = summary(xs(c))
-        row = {"name": c.name, "group": c.group, **c.meta, **s,
-               f"median_{other_name}": statistics.median(getattr(c, other)),
-               "net_of_loop": s["median"] - statistics.median(xs(loop)),
-               "samples_wall": c.samples, "samples_cpu": c.cpu_samples}
+        row = {
+            "name": c.name,
+            "group": c.group,
+            **c.meta,
+            **s,
+            f"median_{other_name}": statistics.median(getattr(c, other)),
+            "net_of_loop": s["median"] - statistics.median(xs(loop)),
+            "samples_wall": c.samples,
+            "samples_cpu": c.cpu_samples,
+        }
         cols = ["", "", "", ""]
         if c.group in ("famcc", "famcc-applied"):
             row["ratio_noop"] = paired_ratio(xs(c), xs(noop))
@@ -496,7 +575,8 @@ def analyse(cands, banks, native, native_src, clock):
             if nat is not None:
                 row["native_ns"] = nat
                 row["ratio_floor"] = statistics.median(
-                    x / (y + nat) for x, y in zip(xs(c), xs(noop)))
+                    x / (y + nat) for x, y in zip(xs(c), xs(noop))
+                )
                 cols[1] = f"{row['ratio_floor']:.2f}"
             if pid is not None:
                 row["pid_ratio"] = paired_ratio(xs(pid), xs(c))
@@ -506,31 +586,52 @@ def analyse(cands, banks, native, native_src, clock):
                 row["ref_ratio"] = paired_ratio(xs(ref), xs(c))
                 cols[3] = f"{row['ref_ratio']:.0f}"
         rows.append(row)
-        print(f"{c.name:46s} {s['median']:8.1f} {s['min']:8.1f} {s['iqr']:7.1f} "
-              f"{row[f'median_{other_name}']:8.1f} {row['net_of_loop']:7.1f} {cols[0]:>6s} "
-              f"{cols[1]:>11s} {cols[2]:>6s} {cols[3]:>6s}")
+        print(
+            f"{c.name:46s} {s['median']:8.1f} {s['min']:8.1f} {s['iqr']:7.1f} "
+            f"{row[f'median_{other_name}']:8.1f} {row['net_of_loop']:7.1f} {cols[0]:>6s} "
+            f"{cols[1]:>11s} {cols[2]:>6s} {cols[3]:>6s}"
+        )
     bank_rows = []
     if banks:
         print()
-        print(f"{'ControllerBank (order 2 unless named)':46s} {'median':>8s} {'min':>8s} "
-              f"{'max':>8s} {other_name:>8s}  {'ns/step':>7s}   (bank cpu = all threads: "
-              f"steps per CPU-second; N >= 16384 runs on {min(os.cpu_count() or 1, 8)} threads)")
+        print(
+            f"{'ControllerBank (order 2 unless named)':46s} {'median':>8s} {'min':>8s} "
+            f"{'max':>8s} {other_name:>8s}  {'ns/step':>7s}   (bank cpu = all threads: "
+            f"steps per CPU-second; N >= 16384 runs on {min(os.cpu_count() or 1, 8)} threads)"
+        )
         print(f"{'':46s} {'M st/s':>8s} {'M st/s':>8s} {'M st/s':>8s} {'M st/s':>8s}")
         for b in banks:
             s = summary(xs(b))
-            bank_rows.append({"name": b.name, "n": b.n, "phase": b.phase, "mode": b.mode,
-                              "calls_per_batch": b.calls, **s,
-                              f"median_{other_name}": statistics.median(getattr(b, other)),
-                              "samples_wall": b.samples, "samples_cpu": b.cpu_samples})
-            print(f"{b.name:46s} {s['median'] / 1e6:8.2f} {s['min'] / 1e6:8.2f} "
-                  f"{s['max'] / 1e6:8.2f} {statistics.median(getattr(b, other)) / 1e6:8.2f}  "
-                  f"{1e9 / s['median']:7.1f}")
+            bank_rows.append(
+                {
+                    "name": b.name,
+                    "n": b.n,
+                    "phase": b.phase,
+                    "mode": b.mode,
+                    "calls_per_batch": b.calls,
+                    **s,
+                    f"median_{other_name}": statistics.median(getattr(b, other)),
+                    "samples_wall": b.samples,
+                    "samples_cpu": b.cpu_samples,
+                }
+            )
+            print(
+                f"{b.name:46s} {s['median'] / 1e6:8.2f} {s['min'] / 1e6:8.2f} "
+                f"{s['max'] / 1e6:8.2f} {statistics.median(getattr(b, other)) / 1e6:8.2f}  "
+                f"{1e9 / s['median']:7.1f}"
+            )
 
     # -- targets -----------------------------------------------------------------
     print()
-    print("native step: " + (f"{native_src}: " + ", ".join(
-        f"{d}/{ph}={ns:.1f} ns" for (d, ph), ns in sorted(native.items()))
-        if native else "not given (pass --native-ns or run cargo bench); ratio skipped"))
+    print(
+        "native step: "
+        + (
+            f"{native_src}: "
+            + ", ".join(f"{d}/{ph}={ns:.1f} ns" for (d, ph), ns in sorted(native.items()))
+            if native
+            else "not given (pass --native-ns or run cargo bench); ratio skipped"
+        )
+    )
     print(f"targets ({clock} clock, medians):")
     verdicts = []
 
@@ -542,27 +643,44 @@ def analyse(cands, banks, native, native_src, clock):
     fam = [r for r in rows if r["group"] == "famcc"]
     o2 = [r for r in fam if r["order"] == 2]
     if all("ratio_floor" in r for r in o2):
-        verdict("order-2 step <= 1.3 x (noop + native step)",
-                all(r["ratio_floor"] <= TARGETS["order2_vs_floor"] for r in o2),
-                ", ".join(f"{r['design']}/{r['phase']} {r['ratio_floor']:.2f}" for r in o2))
+        verdict(
+            "order-2 step <= 1.3 x (noop + native step)",
+            all(r["ratio_floor"] <= TARGETS["order2_vs_floor"] for r in o2),
+            ", ".join(f"{r['design']}/{r['phase']} {r['ratio_floor']:.2f}" for r in o2),
+        )
     else:
         verdict("order-2 step <= 1.3 x (noop + native step)", None, "needs native numbers")
-    verdict("order-2 step <= 200 ns", all(r["median"] <= TARGETS["order2_ns"] for r in o2),
-            ", ".join(f"{r['design']}/{r['phase']} {r['median']:.0f} ns" for r in o2))
+    verdict(
+        "order-2 step <= 200 ns",
+        all(r["median"] <= TARGETS["order2_ns"] for r in o2),
+        ", ".join(f"{r['design']}/{r['phase']} {r['median']:.0f} ns" for r in o2),
+    )
     if pid is not None:
-        verdict(">= 10x faster than simple-pid",
-                all(r["pid_ratio"] >= TARGETS["vs_simple_pid"] for r in fam),
-                ", ".join(f"{r['design']}/{r['phase']} {r['pid_ratio']:.1f}x" for r in fam))
-    verdict(">= 15x faster than the pure-Python reference",
-            all(r["ref_ratio"] >= TARGETS["vs_reference"] for r in fam),
-            ", ".join(f"{r['design']}/{r['phase']} {r['ref_ratio']:.0f}x" for r in fam))
+        verdict(
+            ">= 10x faster than simple-pid",
+            all(r["pid_ratio"] >= TARGETS["vs_simple_pid"] for r in fam),
+            ", ".join(f"{r['design']}/{r['phase']} {r['pid_ratio']:.1f}x" for r in fam),
+        )
+    verdict(
+        ">= 15x faster than the pure-Python reference",
+        all(r["ref_ratio"] >= TARGETS["vs_reference"] for r in fam),
+        ", ".join(f"{r['design']}/{r['phase']} {r['ref_ratio']:.0f}x" for r in fam),
+    )
     b5 = [b for b in bank_rows if b["n"] == 10**5 and b["mode"] == "throughput"]
     if b5:
-        verdict("ControllerBank >= 10 M steps/s at N = 1e5 (order 2)",
-                all(b["median"] >= TARGETS["bank_1e5_steps_per_s"] for b in b5),
-                ", ".join(f"{b['phase']} {b['median'] / 1e6:.1f} M/s" for b in b5))
-    return {"clock": clock, "native_ns": {f"{d}/{ph}": ns for (d, ph), ns in native.items()},
-            "native_source": native_src, "rows": rows, "bank": bank_rows, "targets": verdicts}
+        verdict(
+            "ControllerBank >= 10 M steps/s at N = 1e5 (order 2)",
+            all(b["median"] >= TARGETS["bank_1e5_steps_per_s"] for b in b5),
+            ", ".join(f"{b['phase']} {b['median'] / 1e6:.1f} M/s" for b in b5),
+        )
+    return {
+        "clock": clock,
+        "native_ns": {f"{d}/{ph}": ns for (d, ph), ns in native.items()},
+        "native_source": native_src,
+        "rows": rows,
+        "bank": bank_rows,
+        "targets": verdicts,
+    }
 
 
 if __name__ == "__main__":

@@ -57,6 +57,7 @@ cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 # .cargo/mutants-equivalent.txt fails here. `scripts/mutants.sh --full` runs all.
 bash scripts/mutants.sh
 "$PY" -m ruff check python tests benches examples
+"$PY" -m ruff format --check python tests benches examples
 "$PY" -m mypy --strict python/famcc
 "$PY" -m pytest -q
 # The examples in the package's docstrings.

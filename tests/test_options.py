@@ -191,9 +191,7 @@ def test_simresult_reports_the_health_count():
         f=[lambda x, t: 0.0, lambda x, t: -2.0],
         x0=[0.5, 0.0],
     )
-    ctrl = famcc.Controller(
-        2, DT, famcc.Linear(2.0), eps=2.0, k_u=0.3, rho_e=0.1, settle_time=0.2
-    )
+    ctrl = famcc.Controller(2, DT, famcc.Linear(2.0), eps=2.0, k_u=0.3, rho_e=0.1, settle_time=0.2)
     with pytest.warns(famcc.DesignWarning, match="k_u too small"):
         res = famcc.simulate(plant, ctrl, 3.0, reference=famcc.Constant(0.0))
     assert res.unsaturated_expansions >= 100

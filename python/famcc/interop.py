@@ -71,14 +71,19 @@ def state_labels(controller: Controller, prefix: str = "") -> list[str]:
 def _as_names(value: Sequence[str] | str, what: str) -> list[str]:
     names = [value] if isinstance(value, str) else list(value)
     if len(names) != 1 or not all(isinstance(s, str) for s in names):
-        raise ValueError(f"{what} must name exactly one signal (a controller is SISO), "
-                         f"got {value!r}")
+        raise ValueError(
+            f"{what} must name exactly one signal (a controller is SISO), got {value!r}"
+        )
     return names
 
 
-def to_nlsys(controller: Controller, *, name: str = "famcc",
-             inputs: Sequence[str] | str = ("e",),
-             outputs: Sequence[str] | str = ("v",)) -> Any:
+def to_nlsys(
+    controller: Controller,
+    *,
+    name: str = "famcc",
+    inputs: Sequence[str] | str = ("e",),
+    outputs: Sequence[str] | str = ("v",),
+) -> Any:
     """The controller as a discrete-time ``control.NonlinearIOSystem``.
 
     Parameters
@@ -165,6 +170,11 @@ def to_nlsys(controller: Controller, *, name: str = "famcc",
         return np.array([step(x, u)[0]])
 
     return control.nlsys(
-        updfcn, outfcn, name=name, inputs=in_names, outputs=out_names,
-        states=state_labels(template), dt=template.dt,
+        updfcn,
+        outfcn,
+        name=name,
+        inputs=in_names,
+        outputs=out_names,
+        states=state_labels(template),
+        dt=template.dt,
     )

@@ -111,8 +111,16 @@ class Plant:
     ('m', Signal(name='speed', unit='m/s'))
     """
 
-    def __init__(self, order: int, x0: Sequence[float], name: str = "plant",
-                 variant: str = "", *, output: Any = None, input: Any = None) -> None:
+    def __init__(
+        self,
+        order: int,
+        x0: Sequence[float],
+        name: str = "plant",
+        variant: str = "",
+        *,
+        output: Any = None,
+        input: Any = None,
+    ) -> None:
         if not isinstance(order, (int, np.integer)) or order < 1:
             raise ValueError(f"order must be an integer >= 1, got {order!r}")
         x0_arr = np.array(x0, dtype=np.float64).reshape(-1)
@@ -136,15 +144,11 @@ class Plant:
 
     def output_derivatives(self, t: float, x: np.ndarray) -> np.ndarray:
         """Return ``(y, y', ..., y^(n-1))`` computed exactly from the state."""
-        raise NotImplementedError(
-            f"{type(self).__name__} cannot report its output derivatives"
-        )
+        raise NotImplementedError(f"{type(self).__name__} cannot report its output derivatives")
 
     def gain_and_drift(self, t: float, x: np.ndarray) -> tuple[float, float]:
         """Return ``(G_a, F_a)`` with ``y^(n) = G_a u + F_a`` (paper eq. FAS)."""
-        raise NotImplementedError(
-            f"{type(self).__name__} cannot report its total gain and drift"
-        )
+        raise NotImplementedError(f"{type(self).__name__} cannot report its total gain and drift")
 
     def __repr__(self) -> str:
         label = f", variant={self.variant!r}" if self.variant else ""
@@ -201,9 +205,17 @@ class StrictFeedback(Plant):
     (2.0, -1.0)
     """
 
-    def __init__(self, g: Sequence[ScalarFn], f: Sequence[ScalarFn],
-                 x0: Sequence[float], name: str = "strict-feedback",
-                 variant: str = "", *, output: Any = None, input: Any = None) -> None:
+    def __init__(
+        self,
+        g: Sequence[ScalarFn],
+        f: Sequence[ScalarFn],
+        x0: Sequence[float],
+        name: str = "strict-feedback",
+        variant: str = "",
+        *,
+        output: Any = None,
+        input: Any = None,
+    ) -> None:
         g, f = list(g), list(f)
         if len(g) == 0 or len(g) != len(f):
             raise ValueError(
@@ -264,10 +276,12 @@ class StrictFeedback(Plant):
         if n == 1:
             return np.array([x[0]])
         if n == 2:
-            return np.array([
-                x[0],
-                as_scalar(self.g[0](x, t)) * x[1] + as_scalar(self.f[0](x, t)),
-            ])
+            return np.array(
+                [
+                    x[0],
+                    as_scalar(self.g[0](x, t)) * x[1] + as_scalar(self.f[0](x, t)),
+                ]
+            )
         c1 = self._taylor(t, x, 0.0, n - 1)[0]
         return np.array([c1[k] * math.factorial(k) for k in range(n)])
 
@@ -299,11 +313,20 @@ class _SecondOrder(StrictFeedback):
     for bit (multiplying by 1.0 is exact).
     """
 
-    def __init__(self, variant: str, gain: float = 1.0, amp: float | None = None,
-                 x0: Sequence[float] | None = None) -> None:
-        self._paper = _core.PaperPlant(2, variant, float(gain),
-                                       None if amp is None else float(amp),
-                                       None if x0 is None else [float(v) for v in x0])
+    def __init__(
+        self,
+        variant: str,
+        gain: float = 1.0,
+        amp: float | None = None,
+        x0: Sequence[float] | None = None,
+    ) -> None:
+        self._paper = _core.PaperPlant(
+            2,
+            variant,
+            float(gain),
+            None if amp is None else float(amp),
+            None if x0 is None else [float(v) for v in x0],
+        )
         self._gain = float(gain)
         self._amp = (1.0 if variant == "paper" else 3.0) if amp is None else float(amp)
         amp = self._amp
@@ -321,8 +344,7 @@ class _SecondOrder(StrictFeedback):
         def f2(x: Any, t: Any) -> Any:
             return -(x[0] * x[0] - 1.0) * x[1] + amp * sin(t) + amp * cos(2.0 * t)
 
-        super().__init__([g1, g2], [f1, f2], self._paper.x0, name="second-order",
-                         variant=variant)
+        super().__init__([g1, g2], [f1, f2], self._paper.x0, name="second-order", variant=variant)
         self.params = {"gain": self._gain, "amp": self._amp}
 
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
@@ -348,10 +370,12 @@ class _ThirdOrder(StrictFeedback):
     (10 in both variants); the defaults give the paper's arithmetic bit for bit.
     """
 
-    def __init__(self, variant: str, gain: float = 1.0, amp: float = 10.0,
-                 x0: Sequence[float] | None = None) -> None:
-        self._paper = _core.PaperPlant(3, variant, float(gain), float(amp),
-                                       None if x0 is None else [float(v) for v in x0])
+    def __init__(
+        self, variant: str, gain: float = 1.0, amp: float = 10.0, x0: Sequence[float] | None = None
+    ) -> None:
+        self._paper = _core.PaperPlant(
+            3, variant, float(gain), float(amp), None if x0 is None else [float(v) for v in x0]
+        )
         self._gain, self._amp = float(gain), float(amp)
         b, amp = self._gain, self._amp
 
@@ -373,8 +397,9 @@ class _ThirdOrder(StrictFeedback):
         def f3(x: Any, t: Any) -> Any:
             return -(x[0] * x[0] + x[1]) * x[2] + amp * sin(t) + amp * cos(2.0 * t)
 
-        super().__init__([g1, g2, g3], [f1, f2, f3], self._paper.x0, name="third-order",
-                         variant=variant)
+        super().__init__(
+            [g1, g2, g3], [f1, f2, f3], self._paper.x0, name="third-order", variant=variant
+        )
         self.params = {"gain": self._gain, "amp": self._amp}
 
     def rhs(self, t: float, x: np.ndarray, u: float) -> np.ndarray:
@@ -391,8 +416,13 @@ class _ThirdOrder(StrictFeedback):
         return self._paper.gain_and_drift(t, x)
 
 
-def second_order(variant: str = "code", *, gain: float = 1.0, amp: float | None = None,
-                 x0: Sequence[float] | None = None) -> Plant:
+def second_order(
+    variant: str = "code",
+    *,
+    gain: float = 1.0,
+    amp: float | None = None,
+    x0: Sequence[float] | None = None,
+) -> Plant:
     """The paper's second-order plant (eq. System_sim), ``x(0) = (-1, 0.5)``.
 
     ``x1' = (1 + 0.1 cos x1 + 0.1 sin t) x2 - x1 + sin t`` and
@@ -423,8 +453,13 @@ def second_order(variant: str = "code", *, gain: float = 1.0, amp: float | None 
     return _SecondOrder(_check_variant(variant), gain, amp, x0)
 
 
-def third_order(variant: str = "code", *, gain: float = 1.0, amp: float = 10.0,
-                x0: Sequence[float] | None = None) -> Plant:
+def third_order(
+    variant: str = "code",
+    *,
+    gain: float = 1.0,
+    amp: float = 10.0,
+    x0: Sequence[float] | None = None,
+) -> Plant:
     """The paper's third-order plant (eq. System_sim3).
 
     ``x1' = (1 + 0.1 sin x1 + 0.1 cos t) x2 - x1 + cos t`` (the printed equation

@@ -39,8 +39,16 @@ from famcc import _core, plants, verdicts
 if TYPE_CHECKING:
     from famcc.simulation import SimResult
 
-__all__ = ["MAX_EXTENSIONS", "MAX_HORIZON", "MAX_RK4_STEP", "VARIANTS", "Scenario", "names",
-           "paper", "substeps_for"]
+__all__ = [
+    "MAX_EXTENSIONS",
+    "MAX_HORIZON",
+    "MAX_RK4_STEP",
+    "VARIANTS",
+    "Scenario",
+    "names",
+    "paper",
+    "substeps_for",
+]
 
 VARIANTS = plants.VARIANTS
 
@@ -123,8 +131,13 @@ class Scenario:
         order = kw.pop("order")
         return famcc.Controller(order, dt, **kw)
 
-    def run(self, dt: float = 1e-3, t_end: float | None = None, substeps: int | None = None,
-            **overrides: Any) -> SimResult:
+    def run(
+        self,
+        dt: float = 1e-3,
+        t_end: float | None = None,
+        substeps: int | None = None,
+        **overrides: Any,
+    ) -> SimResult:
         """Simulates the scenario; returns a :class:`famcc.SimResult`.
 
         ``overrides`` go to the controller (e.g. ``differentiator=...``);
@@ -145,8 +158,14 @@ class Scenario:
         substeps = substeps_for(dt) if substeps is None else substeps
 
         def once(h: float) -> SimResult:
-            return simulate(self.plant, self.controller(dt, **overrides), h,
-                            reference=Sine(), u_limits=self.u_limits, substeps=substeps)
+            return simulate(
+                self.plant,
+                self.controller(dt, **overrides),
+                h,
+                reference=Sine(),
+                u_limits=self.u_limits,
+                substeps=substeps,
+            )
 
         res = once(horizon)
         if t_end is not None or not self.saturated:
@@ -182,12 +201,16 @@ class Scenario:
         """
         eps, ts_, tp = self.eps_z, self.settle_time, self.t_prime
         if not self.saturated:
-            return [verdicts.settling(result, eps, ts_, tp),
-                    verdicts.unsaturated(result, verdicts.STARTUP),
-                    verdicts.nominal(result, verdicts.STARTUP)]
-        return [verdicts.settles(result, eps, self.t_end, known_failure=not self.regains_accuracy),
-                verdicts.recovery(result, eps, ts_, tp),
-                verdicts.nominal_again(result, ts_, tp)]
+            return [
+                verdicts.settling(result, eps, ts_, tp),
+                verdicts.unsaturated(result, verdicts.STARTUP),
+                verdicts.nominal(result, verdicts.STARTUP),
+            ]
+        return [
+            verdicts.settles(result, eps, self.t_end, known_failure=not self.regains_accuracy),
+            verdicts.recovery(result, eps, ts_, tp),
+            verdicts.nominal_again(result, ts_, tp),
+        ]
 
     @property
     def claims(self) -> tuple[str, ...]:
