@@ -40,7 +40,6 @@ from typing import Any
 
 import numpy as np
 
-from famcc._jet import cos, sin, tanh
 from famcc.plants import StrictFeedback
 
 __all__ = [
@@ -58,14 +57,15 @@ G0 = 9.81  # m/s^2
 def smooth_step(t: Any, t0: float, width: float) -> Any:
     """``0.5 (1 + tanh((t - t0) / width))``: 0 well before ``t0``, 1 well after.
 
-    Works on floats and jets (no comparison), so plants stay differentiable.
+    Works on floats, arrays and jets (no comparison), so plants stay
+    differentiable.
 
     >>> round(float(smooth_step(0.0, 1.0, 0.01)), 6), round(float(smooth_step(2.0, 1.0, 0.01)), 6)
     (0.0, 1.0)
     """
     if width <= 0:
         raise ValueError(f"width must be > 0, got {width!r}")
-    return 0.5 * (1.0 + tanh((t - t0) / width))
+    return 0.5 * (1.0 + np.tanh((t - t0) / width))
 
 
 class PhysicalPlant(StrictFeedback):
@@ -107,10 +107,6 @@ class PhysicalPlant(StrictFeedback):
         return self._hold
 
     def rhs_fast(self, t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
-<<<<<<< HEAD
-        """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`): the same
-        callables, which evaluate floats with :mod:`math`."""
-=======
         """:meth:`rhs` on plain floats (used by :func:`famcc.simulate`).
 
         The plant's own float formula when it has one (``fast=``), else the
@@ -119,11 +115,10 @@ class PhysicalPlant(StrictFeedback):
         if self._fast is not None:
             return self._fast(t, x, u)
         xa = np.asarray(x, dtype=float)
->>>>>>> i14
         n = self.order
-        g, f = self.g, self.f
         return tuple(
-            g[i](x, t) * (x[i + 1] if i + 1 < n else u) + f[i](x, t) for i in range(n)
+            float(self.g[i](xa, t)) * (x[i + 1] if i + 1 < n else u) + float(self.f[i](xa, t))
+            for i in range(n)
         )
 
     def __repr__(self) -> str:
@@ -161,12 +156,12 @@ def dc_motor(
         Load torque after ``t_load``, N m (a smooth 5 ms step).
     t_load : float
         Time of the load step, s.
-    x0 : (float, float)
-        Initial angle (rad) and speed (rad/s).
     load_step : float
         A further load torque from ``t_step`` on, N m (a second smooth step).
     t_step : float
         Time of the further step, s.
+    x0 : (float, float)
+        Initial angle (rad) and speed (rad/s).
     """
     for label, v in (("J", J), ("K", K), ("R", R)):
         if not v > 0:
@@ -181,26 +176,32 @@ def dc_motor(
         return -damp * x[1] - torque / J
 
     def fast(t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
-        # the generic path's arithmetic, operation for operation (families match it bit for bit)
-        step = float(0.5 * (1.0 + np.tanh((t - t_load) / 0.005)))
-        return (1.0 * x[1] + 0.0 * x[0], gain * u + (-damp * x[1] - load * step / J))
+        # f2 on floats, operation for operation (families compare bit for bit)
+        torque = load * float(0.5 * (1.0 + np.tanh((t - t_load) / 0.005)))
+        if load_step:
+            torque = torque + load_step * float(0.5 * (1.0 + np.tanh((t - t_step) / 0.005)))
+        return (1.0 * x[1] + 0.0 * x[0], gain * u + (-damp * x[1] - torque / J))
 
     return PhysicalPlant(
         g=[lambda x, t: 1.0, lambda x, t: gain],
         f=[lambda x, t: 0.0 * x[0], f2],
         x0=x0,
         name="dc-motor",
-        params={"J": J, "b": b, "K": K, "R": R, "load": load, "t_load": t_load,
-                "load_step": load_step, "t_step": t_step},
+        params={
+            "J": J,
+            "b": b,
+            "K": K,
+            "R": R,
+            "load": load,
+            "t_load": t_load,
+            "load_step": load_step,
+            "t_step": t_step,
+        },
         output=("angle", "rad"),
         input=("voltage", "V"),
         gain=gain,
-<<<<<<< HEAD
         hold=max(abs(load), abs(load + load_step)) * R / K,
-=======
-        hold=abs(load) * R / K,
         fast=fast,
->>>>>>> i14
     )
 
 
@@ -229,7 +230,7 @@ def pendulum(
     gain = 1.0 / inertia
 
     def f2(x: Any, t: Any) -> Any:
-        return -(m * G0 * l * sin(x[0]) + b * x[1]) / inertia
+        return -(m * G0 * l * np.sin(x[0]) + b * x[1]) / inertia
 
     def fast(t: float, x: Sequence[float], u: float) -> tuple[float, ...]:
         f2 = -(m * G0 * l * float(np.sin(x[0])) + b * x[1]) / inertia
@@ -273,7 +274,7 @@ def quadrotor_altitude(
         raise ValueError(f"mass must be > 0, got {mass!r}")
 
     def g2(x: Any, t: Any) -> Any:
-        return cos(tilt * sin(0.5 * t)) / mass + 0.0 * x[0]
+        return np.cos(tilt * np.sin(0.5 * t)) / mass + 0.0 * x[0]
 
     def f2(x: Any, t: Any) -> Any:
         return -G0 - drag * x[1] / mass
@@ -327,7 +328,7 @@ def flexible_joint(
             raise ValueError(f"{label} must be > 0, got {v!r}")
 
     def f2(x: Any, t: Any) -> Any:
-        return -(k * x[0] + mgl * sin(x[0])) / J_link
+        return -(k * x[0] + mgl * np.sin(x[0])) / J_link
 
     def f4(x: Any, t: Any) -> Any:
         return (k * (x[0] - x[2]) - b_motor * x[3]) / J_motor
