@@ -17,10 +17,10 @@ status 0 when the requirement is met.
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 import famcc
+from requirement import tune_and_check
 
 OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(".")
 DT, U_LIMITS, EPS, SETTLE = 1e-3, (-12.0, 12.0), 0.01, 1.5
@@ -28,30 +28,14 @@ SET_POINT = famcc.Constant(1.0)
 
 # The requirement run: the load is there from the start.
 plant = famcc.plants.dc_motor(load=1.0, t_load=0.0)
-t0 = time.perf_counter()
-design = famcc.tune(
-    plant, dt=DT, u_limits=U_LIMITS, eps=EPS, settle_time=SETTLE, reference=SET_POINT
-)
-print(f"famcc.tune took {time.perf_counter() - t0:.1f} s: {design.choice}")
-print(design)
-
-res = famcc.simulate(plant, design.controller(), 4.0, reference=SET_POINT, u_limits=U_LIMITS)
-verdict = famcc.tuning.assess(res, eps=EPS, settle_time=SETTLE, u_limits=U_LIMITS)
-print("tuned:", verdict)
-
-# The rules alone (famcc.design with the datasheet's numbers), no simulation.
-ruled = famcc.design(
-    2,
-    DT,
+design, res, verdict = tune_and_check(
+    plant,
+    dt=DT,
     u_limits=U_LIMITS,
     eps=EPS,
     settle_time=SETTLE,
-    hold_input=plant.hold_input(),
-    gain=plant.gain,
-)
-res_rules = famcc.simulate(plant, ruled.controller(), 4.0, reference=SET_POINT, u_limits=U_LIMITS)
-print(
-    "design alone:", famcc.tuning.assess(res_rules, eps=EPS, settle_time=SETTLE, u_limits=U_LIMITS)
+    reference=SET_POINT,
+    t_end=4.0,
 )
 
 # A load step after settling: 1 N m -> 1.5 N m at t = 3 s.

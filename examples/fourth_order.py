@@ -16,37 +16,24 @@ exit status 0 when the requirement is met.
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 import famcc
+from requirement import tune_and_check
 
 OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(".")
 DT, U_LIMITS, EPS, SETTLE = 1e-3, (-5.0, 5.0), 0.01, 6.0
 TARGET = famcc.Constant(0.5)
 
 plant = famcc.plants.flexible_joint()
-t0 = time.perf_counter()
-design = famcc.tune(plant, dt=DT, u_limits=U_LIMITS, eps=EPS, settle_time=SETTLE, reference=TARGET)
-print(f"famcc.tune took {time.perf_counter() - t0:.1f} s: {design.choice}")
-print(design)
-
-res = famcc.simulate(plant, design.controller(), 10.0, reference=TARGET, u_limits=U_LIMITS)
-verdict = famcc.tuning.assess(res, eps=EPS, settle_time=SETTLE, u_limits=U_LIMITS)
-print("tuned:", verdict)
-
-ruled = famcc.design(
-    4,
-    DT,
+design, res, verdict = tune_and_check(
+    plant,
+    dt=DT,
     u_limits=U_LIMITS,
     eps=EPS,
     settle_time=SETTLE,
-    hold_input=plant.hold_input(),
-    gain=plant.gain,
-)
-res_rules = famcc.simulate(plant, ruled.controller(), 10.0, reference=TARGET, u_limits=U_LIMITS)
-print(
-    "design alone:", famcc.tuning.assess(res_rules, eps=EPS, settle_time=SETTLE, u_limits=U_LIMITS)
+    reference=TARGET,
+    t_end=10.0,
 )
 
 fig = res.plot(title="Flexible joint (order 4): 0.5 rad step")

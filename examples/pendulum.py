@@ -13,37 +13,24 @@ status 0 when the requirement is met.
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 import famcc
+from requirement import tune_and_check
 
 OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(".")
 DT, U_LIMITS, EPS, SETTLE = 1e-3, (-3.0, 3.0), 0.01, 2.0
 TARGET = famcc.Constant(2.0)
 
 plant = famcc.plants.pendulum()
-t0 = time.perf_counter()
-design = famcc.tune(plant, dt=DT, u_limits=U_LIMITS, eps=EPS, settle_time=SETTLE, reference=TARGET)
-print(f"famcc.tune took {time.perf_counter() - t0:.1f} s: {design.choice}")
-print(design)
-
-res = famcc.simulate(plant, design.controller(), 4.0, reference=TARGET, u_limits=U_LIMITS)
-verdict = famcc.tuning.assess(res, eps=EPS, settle_time=SETTLE, u_limits=U_LIMITS)
-print("tuned:", verdict)
-
-ruled = famcc.design(
-    2,
-    DT,
+design, res, verdict = tune_and_check(
+    plant,
+    dt=DT,
     u_limits=U_LIMITS,
     eps=EPS,
     settle_time=SETTLE,
-    hold_input=plant.hold_input(),
-    gain=plant.gain,
-)
-res_rules = famcc.simulate(plant, ruled.controller(), 4.0, reference=TARGET, u_limits=U_LIMITS)
-print(
-    "design alone:", famcc.tuning.assess(res_rules, eps=EPS, settle_time=SETTLE, u_limits=U_LIMITS)
+    reference=TARGET,
+    t_end=4.0,
 )
 
 fig = res.plot(title="Pendulum: swing to 2 rad with |u| <= 3 N m")
