@@ -94,21 +94,21 @@ const SCENARIOS: [(&str, u8, (f64, f64)); 6] = [
 fn simulate(example: u8, variant: Variant, limits: (f64, f64)) -> Run {
     match example {
         1 => run(
-            &Second(variant),
+            &Second::new(variant),
             &mut example1::<f64>(variant, DT),
             T_END,
             limits,
             10,
         ),
         2 => run(
-            &Second(variant),
+            &Second::new(variant),
             &mut example2::<f64>(variant, DT),
             T_END,
             limits,
             10,
         ),
         _ => run(
-            &Third(variant),
+            &Third::new(variant),
             &mut example3::<f64>(variant, DT),
             T_END,
             limits,
