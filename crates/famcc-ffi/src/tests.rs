@@ -640,6 +640,14 @@ fn c_variant<T: Real>(v: &Case, order: usize) -> FamccConfig<T> {
         initial_derivatives: pad(v.init.unwrap_or([0.0; 3])),
         has_estimate_limits: u32::from(v.limits.is_some()),
         estimate_limits: pad(v.limits.unwrap_or([0.0; 3])),
+        // the options beyond the paper are off (tests_options.rs covers them)
+        integral: 0,
+        has_output_limits: 0,
+        output_limits: [T::zero(); 2],
+        has_rate_limit: 0,
+        rate_limit: T::zero(),
+        has_initial_output: 0,
+        initial_output: T::zero(),
     }
 }
 
