@@ -527,5 +527,6 @@ def design_rules(
     phase_budget: float | None = None,
     mu_per_dt: float | None = None,
     settle_fraction: float | None = None,
+    max_error: float | None = None,
 ) -> dict[str, Any]:
     """The design rules of famcc-core (see :func:`famcc.design`)."""

@@ -18,8 +18,8 @@ numbers; this module translates them and puts them into words.
 
 from famcc._common import DesignWarning
 from famcc.tuning.assess import Assessment, assess
-from famcc.tuning.rules import Design, Finding, design
-from famcc.tuning.search import BUDGETS, FRACTIONS, MU_SAMPLES, Trial, tune
+from famcc.tuning.rules import Design, Finding, Trial, design
+from famcc.tuning.search import BUDGETS, FRACTIONS, MU_SAMPLES, tune
 
 __all__ = [
     "BUDGETS",
