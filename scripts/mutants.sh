@@ -68,9 +68,10 @@ export CARGO_PROFILE_TEST_DEBUG=0 CARGO_PROFILE_DEV_DEBUG=0
 all_tests=(--cargo-arg=--lib --cargo-arg=--tests)
 # The slice: the unit tests and the integration tests that check values
 # (step() by hand and from the authors' functions, the properties, the
-# differentiator, the latch) and the measured closed-loop outcomes.
+# differentiator, the latch), the measured closed-loop outcomes, the design
+# rules, the options beyond the paper and the clamp count.
 slice_tests=(--cargo-arg=--lib)
-for t in step_values golden properties differentiator latch closed_loop_outcomes; do
+for t in step_values golden properties differentiator latch closed_loop_outcomes design options no_flexible_clamp; do
     slice_tests+=("--cargo-arg=--test=$t")
 done
 
