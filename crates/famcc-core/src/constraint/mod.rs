@@ -261,7 +261,14 @@ fn finish<T: Real>(
         Some((rho_e, transition)) => expansion(transition, xi_nominal.abs() * d_u, d_u, rho_e),
         None => T::one(),
     };
-    let (xi, clamped) = clamp_below_one(xi_nominal / factor);
+    // A state so far out that the expansion overflowed: |xi~| = d_sc /
+    // (d_sc + rho_e) is 1 to the float's precision (then clamped below 1).
+    let (xi, factor) = if factor.is_finite() {
+        (xi_nominal / factor, factor)
+    } else {
+        (xi_nominal.signum(), T::max_value())
+    };
+    let (xi, clamped) = clamp_below_one(xi);
     Evaluation {
         xi,
         xi_nominal,

@@ -111,8 +111,12 @@ fn refine<T: Real>(f: &impl Fn(T) -> T, mut a: T, mut fa: T, mut b: T, mut fb: T
             x = a + (b - a) * T::from_f64(0.5);
         }
         let fx = f(x);
-        if fx == T::zero() || !fx.is_finite() {
+        if fx == T::zero() {
             return x;
+        }
+        if !fx.is_finite() {
+            // Never a point where f is not finite: the better end instead.
+            break;
         }
         if (fx > T::zero()) == (fa > T::zero()) {
             a = x;
