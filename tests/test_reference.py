@@ -45,6 +45,9 @@ import numpy as np
 import pytest
 from oracle.reference import CLAMP_LIMIT, ReferenceController, discretize_hgd
 
+#: Index of z_hat[0] in ``Controller.state()`` (after the named fields).
+ZHAT = len(famcc._core.STATE_FIELDS)
+
 DT = 1e-3
 SCENARIOS = [(n, v) for n in famcc.scenarios.names() for v in ("paper", "code")]
 
@@ -75,14 +78,14 @@ def core_discretization(ctrl: famcc.Controller):
     phi = [[0.0] * n for _ in range(n)]
     for j in range(n):
         s = base.copy()
-        s[7:] = 0.0
-        s[7 + j] = 1.0
+        s[ZHAT:] = 0.0
+        s[ZHAT + j] = 1.0
         c.set_state(s)
         c.step(0.0)  # Phi e_j + Gamma * 0
         for i, x in enumerate(c.estimate):
             phi[i][j] = float(x)
     s = base.copy()
-    s[7:] = 0.0
+    s[ZHAT:] = 0.0
     c.set_state(s)
     c.step(1.0)  # Phi 0 + Gamma * 1
     return tuple(map(tuple, phi)), tuple(float(x) for x in c.estimate)

@@ -96,7 +96,7 @@ def to_nlsys(controller: Controller, *, name: str = "famcc",
     Returns
     -------
     control.NonlinearIOSystem
-        Sampling period ``dt = controller.dt``, ``7 + order`` states (the
+        Sampling period ``dt = controller.dt``, ``len(STATE_FIELDS) + order`` states (the
         vector of :meth:`famcc.Controller.state`, labelled by
         :func:`state_labels`), one input, one output. The update and output
         functions are pure functions of ``(t, x, u, params)``: each one copies

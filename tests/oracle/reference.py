@@ -712,8 +712,9 @@ class ReferenceController:
         return list(self._zhat)
 
     def state(self) -> list:
-        """``[started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, zhat...]``
-        (the layout of ``famcc.Controller.state()``)."""
+        """``[started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period,
+        config, zhat...]`` (the layout of ``famcc.Controller.state()``; the
+        compiled core's configuration fingerprint is not known here: 0)."""
         return [
             1.0 if self._started else 0.0,
             self._t_base,
@@ -722,20 +723,22 @@ class ReferenceController:
             self._rho0_y,
             float(self._clamps),
             self._last_v,
+            self.dt,
+            0.0,
             *self._zhat,
         ]
 
     def set_state(self, v: Sequence[float]) -> None:
         """Continues from a vector returned by ``state()`` (either implementation's)."""
         v = [float(x) for x in v]
-        if len(v) != 7 + self.order:
-            raise ValueError(f"state must have {7 + self.order} entries")
+        if len(v) != 9 + self.order:
+            raise ValueError(f"state must have {9 + self.order} entries")
         self.reset()
         self._started = v[0] != 0.0
         self._t_base, self._k = v[1], int(v[2])
         self._rho0_x, self._rho0_y = v[3], v[4]
         self._clamps, self._last_v = int(v[5]), v[6]
-        self._zhat = v[7:]
+        self._zhat = v[9:]
 
     @property
     def diagnostics(self) -> ReferenceDiagnostics:
