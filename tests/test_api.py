@@ -61,7 +61,18 @@ def _configs() -> dict[str, famcc.Controller]:
             differentiator=famcc.HighGain.default(3, mu=0.02, discretization="euler"),
         ),
         "order1": famcc.Controller(1, 1e-3, eps=0.1, k_u=1.0),
-        "order4": famcc.Controller(4, 1e-3, famcc.Linear(3.0), eps=1.0, k_u=10.0),
+        # Order 4: the default differentiator (tustin) with estimate limits
+        # (without them it warns: start-up peaking).
+        "order4": famcc.Controller(
+            4,
+            1e-3,
+            famcc.Linear(3.0),
+            eps=1.0,
+            k_u=10.0,
+            differentiator=famcc.HighGain(
+                0.01, [8.0, 24.0, 32.0, 16.0], "tustin", limits=[10.0, 1e2, 1e3, 1e4]
+            ),
+        ),
     }
 
 

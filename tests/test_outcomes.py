@@ -32,6 +32,10 @@ sys.path.insert(0, str(HERE))
 from runs import scenario_run
 from test_invariants import make_plant
 
+# random-4 stays expanded with headroom 73 % of the time (issue 13: rho_e = 0.01
+# loses accuracy on random plants of the paper's class): its health warning is expected.
+pytestmark = pytest.mark.filterwarnings("ignore:k_u too small:famcc.DesignWarning")
+
 VALUES = HERE / "outcomes.json"
 
 #: metric -> (relative, absolute) tolerance; a value passes when it is within either.

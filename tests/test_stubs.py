@@ -107,7 +107,7 @@ def _instances() -> dict[str, list[object]]:
     return {
         "Controller": [
             ctrl,
-            famcc.Controller(3, 1e-2, famcc.Linear(2.0), eps=0.5, k_u=1.0, dtype="float32"),
+            famcc.Controller(3, 1e-3, famcc.Linear(2.0), eps=0.5, k_u=1.0, dtype="float32"),
         ],
         "Diagnostics": [ctrl.diagnostics, gapped.diagnostics],
         "ControllerBank": [bank],

@@ -21,7 +21,7 @@ whose ``summary()`` gives the metrics in plain words, and
 """
 
 from famcc import bounds, envelope, plants, scenarios, transition
-from famcc._common import DefaultReferenceWarning, FamccWarning, Signal
+from famcc._common import DefaultReferenceWarning, DesignWarning, FamccWarning, Signal
 from famcc._core import (
     MAX_ORDER,
     ConfigError,
@@ -52,6 +52,7 @@ __all__ = [
     "Controller",
     "ControllerBank",
     "DefaultReferenceWarning",
+    "DesignWarning",
     "Diagnostics",
     "FamccWarning",
     "FiniteTime",

@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["DefaultReferenceWarning", "FamccWarning", "Signal"]
+__all__ = ["DefaultReferenceWarning", "DesignWarning", "FamccWarning", "Signal"]
 
 _SUPERSCRIPTS = {2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹"}
 
@@ -100,3 +100,12 @@ class Signal:
         """``" [unit]"`` of the ``k``-th derivative, or ``""`` when the unit is unknown."""
         unit = self.derivative_unit(k)
         return "" if unit is None else f" [{unit}]"
+
+
+class DesignWarning(FamccWarning):
+    """A legal but risky choice (or a requirement a design cannot meet).
+
+    Emitted by :func:`famcc.design` for every finding that is not ok, and by
+    :class:`famcc.Controller` for risky configurations; the message names the
+    parameter, the rule and a suggested value.
+    """

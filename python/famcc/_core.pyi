@@ -313,11 +313,66 @@ class Diagnostics:
     @property
     def clamp_count(self) -> int: ...
     @property
+    def v_unlimited(self) -> float: ...
+    @property
+    def integral(self) -> float | None: ...
+    @property
+    def integrating(self) -> bool: ...
+    @property
+    def unsaturated_expansions(self) -> int: ...
+    @property
     def v(self) -> float: ...
 
 @final
 class Controller:
-    """The FAMCC controller."""
+    """The FAMCC controller.
+
+    The sign convention of every step method is ``e = y - y_d`` (the output minus
+    the reference: the opposite of a PID's ``setpoint - y``); :meth:`step_output`
+    takes ``y`` and ``y_d`` and forms it.
+
+    Parameters
+    ----------
+    order : int
+        The plant's order n (the relative degree of the output).
+    integral : bool, optional
+        Integral action (default False; docs/design.md §3.8). The law of order
+        ``n + 1`` acts on ``(I, e, e', ..., e^(n-1))`` with ``I`` the exact integral
+        of the measured error (rectangle rule), so a constant load is carried by
+        ``I`` and the error tends to 0. ``feedback`` and ``skew`` then have ``order``
+        entries (one per stage of the order ``n + 1`` law), the differentiator keeps
+        ``order`` coefficients (it runs on ``e``), ``initial_derivatives`` stay the
+        plant's ``(z2..zn)``. The integral is separated (anti-windup): ``e`` is
+        integrated only while ``|s| <= eps`` (the final band) and not while the
+        output is beyond a known limit with ``e`` pushing it further. Needs
+        ``order < MAX_ORDER``.
+    output_limits : (float, float), optional
+        Magnitude limits ``(lo, hi)`` of the output, ``lo < hi``, input units
+        (default None). :meth:`step` returns the limited output; it counts as the
+        applied input for the integral separation and the health count, and
+        ``diagnostics.v_unlimited`` keeps the law's own output.
+    rate_limit : float, optional
+        The output's largest rate of change, input units per second (default
+        None).
+    initial_output : float, optional
+        Bumpless start (default None): the first step's output equals
+        ``initial_output`` when that is feasible (with integral action by the
+        choice of ``I_0``; without, by rescaling the latched widths), else the
+        nearest feasible output.
+
+    Warns
+    -----
+    famcc.DesignWarning
+        At construction, once per legal but risky choice (``lint()``): dt too
+        coarse for mu, a last-stage law that chatters when sampled, rho_e too
+        large for eps, no estimate limits at differentiator order >= 4, the
+        exact ZOH at order >= 4. While stepping with the applied input known
+        (``applied`` passed or ``output_limits`` set), once, when the bounds
+        were expanded although the actuator had headroom for half the envelope's
+        settling time in total (``diagnostics.unsaturated_expansions >=
+        0.5 settle_time / dt``: persistent, not a start-up transient or the
+        recovery after a saturation): ``k_u`` too small for the plant.
+    """
 
     def __new__(
         cls,
@@ -333,11 +388,16 @@ class Controller:
         k_u: float,
         gamma: _Gamma = ...,
         rho_e: float | Literal["auto"] | None = ...,  # "auto": min(0.01, eps/10); None: off
-        differentiator: HighGain | Literal["auto"] | None = ...,  # "auto": HighGain.default(order)
+        # "auto": the paper's (exact) up to order 3, HighGain.default(order, discretization="tustin") above
+        differentiator: HighGain | Literal["auto"] | None = ...,
         latch: _Latch = ...,
         transition: _Transition = ...,
         initial_derivatives: Sequence[float] | None = None,
         dtype: _DType = ...,
+        integral: bool = False,
+        output_limits: tuple[float, float] | None = None,
+        rate_limit: float | None = None,
+        initial_output: float | None = None,
     ) -> Controller: ...
     @property
     def dt(self) -> float: ...
@@ -351,7 +411,11 @@ class Controller:
     def diagnostics(self) -> Diagnostics: ...
     @property
     def estimate(self) -> _F64Array: ...
+    @property
+    def integral(self) -> bool: ...
     def step(self, e: float, applied: float | None = None) -> float: ...
+    def step_output(self, y: float, y_d: float, applied: float | None = None) -> float: ...
+    def lint(self) -> list[str]: ...
     def step_dt(self, e: float, dt: float, applied: float | None = None) -> float: ...
     def step_state(
         self, z: Sequence[float] | NDArray[np.floating[Any]], applied: float | None = None
@@ -373,6 +437,7 @@ class ControllerBank:
     def __new__(cls, controller: Controller, n: int) -> ControllerBank: ...
     def __len__(self) -> int: ...
     def step(self, e: _F64Array) -> _F64Array: ...
+    def step_output(self, y: _F64Array, y_d: _F64Array) -> _F64Array: ...
     @property
     def overflows(self) -> int: ...
     @property

@@ -190,6 +190,12 @@ class SimResult:
         the bounds are nominal).
     clamp_count : int
         The controller's final clamp count.
+    unsaturated_expansions : int or None
+        Steps at which the controller's bounds were expanded while the actuator had
+        headroom (famcc's controllers count them because :func:`simulate` passes
+        ``applied``): nonzero means the preset accuracy was given up without
+        saturation, ``k_u`` too small for the plant or ``rho_e`` too large. None when
+        not recorded or the controller does not count them.
     neg_f_over_g : ndarray or None
         ``-F/G`` (the input that holds ``dz_n/dt = 0``), None when unknown; then
         ``neg_f_over_g_error`` says why.
@@ -242,6 +248,7 @@ class SimResult:
     nominal_bounds: np.ndarray | None = None
     expanded: np.ndarray | None = None
     clamp_count: int = 0
+    unsaturated_expansions: int | None = None
     neg_f_over_g: np.ndarray | None = None
     xi_nominal: np.ndarray | None = None
     expansion: np.ndarray | None = None
@@ -1037,6 +1044,7 @@ def simulate(
         nb_arr = np.full((K, 2), np.nan)
         ex_arr = np.zeros(K, dtype=bool)
     clamp_count = 0
+    unsaturated: int | None = None
 
     # -- loop -------------------------------------------------------------------
     u_prev: float | None = None
@@ -1077,6 +1085,8 @@ def simulate(
                 zh_arr[k] = np.asarray(d.z_hat, dtype=float)
                 ex_arr[k] = bool(d.expanded)
                 clamp_count = int(d.clamp_count)
+                count = getattr(d, "unsaturated_expansions", None)
+                unsaturated = None if count is None else int(count)
                 if has_fg and negfg is not None and fg_fn is not None:
                     try:
                         gain, drift = fg_fn(t, x)
@@ -1114,6 +1124,7 @@ def simulate(
         dt=dt,
         u_limits=limits,
         clamp_count=clamp_count,
+        unsaturated_expansions=unsaturated,
         neg_f_over_g=negfg,
         output=out_signal,
         input=in_signal,

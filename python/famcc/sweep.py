@@ -168,7 +168,10 @@ def run_one(
         )
     except (FloatingPointError, ValueError, OverflowError, ArithmeticError) as exc:
         rec["error"] = f"{type(exc).__name__}: {exc}"
-        rec["violations"] = ["diverged: " + str(exc).split(":")[0]]
+        # famcc.ConfigError: rejected at construction (e.g. an unstable
+        # discretized differentiator); anything else: the run diverged.
+        what = "rejected" if type(exc).__name__ == "ConfigError" else "diverged"
+        rec["violations"] = [f"{what}: " + str(exc).split(":")[0]]
         rec["runtime_s"] = time.perf_counter() - t0
         return rec
     rec["runtime_s"] = time.perf_counter() - t0

@@ -35,6 +35,11 @@
 #define FAMCC_MAX_STAGES 2
 
 /**
+ * The largest number of findings `*_lint` writes (one per kind of risk).
+ */
+#define FAMCC_MAX_FINDINGS 5
+
+/**
  * 64-bit words of storage per controller type: the controller and a tag
  * word (x86_64: 42, 80, 54, 103 words in use), plus ~25 % headroom so that
  * famcc-core can grow without an ABI change. Checked at compile time on
@@ -604,6 +609,39 @@ typedef struct FamccConfig_f32 {
    * Estimate limits (> 0, infinity allowed).
    */
   float estimate_limits[FAMCC_MAX_ORDER];
+  /**
+   * Nonzero: integral action (docs/design.md §3.8). The controller's
+   * order is then the law's, the plant's + 1: an order-3 controller for
+   * an order-2 plant, with `stages[0..2]`, the differentiator of the
+   * plant's order in `a[0..order-1]`, and the arrays above in the law's
+   * coordinates (slot 0 the integral: `initial_derivatives[2..order]` are
+   * the plant's `z2..zn`, `estimate_limits[0]` is ignored).
+   */
+  uint32_t integral;
+  /**
+   * Nonzero: limit the output to `[output_limits[0], output_limits[1]]`.
+   */
+  uint32_t has_output_limits;
+  /**
+   * Output magnitude limits `lo < hi` (infinite ends allowed).
+   */
+  float output_limits[2];
+  /**
+   * Nonzero: limit the output's rate to `rate_limit` units per second.
+   */
+  uint32_t has_rate_limit;
+  /**
+   * Output rate limit (> 0), units per second.
+   */
+  float rate_limit;
+  /**
+   * Nonzero: bumpless start, the first output is `initial_output` when feasible.
+   */
+  uint32_t has_initial_output;
+  /**
+   * The output the first step starts from.
+   */
+  float initial_output;
 } FamccConfig_f32;
 
 /**
@@ -888,6 +926,39 @@ typedef struct FamccConfig_f64 {
    * Estimate limits (> 0, infinity allowed).
    */
   double estimate_limits[FAMCC_MAX_ORDER];
+  /**
+   * Nonzero: integral action (docs/design.md §3.8). The controller's
+   * order is then the law's, the plant's + 1: an order-3 controller for
+   * an order-2 plant, with `stages[0..2]`, the differentiator of the
+   * plant's order in `a[0..order-1]`, and the arrays above in the law's
+   * coordinates (slot 0 the integral: `initial_derivatives[2..order]` are
+   * the plant's `z2..zn`, `estimate_limits[0]` is ignored).
+   */
+  uint32_t integral;
+  /**
+   * Nonzero: limit the output to `[output_limits[0], output_limits[1]]`.
+   */
+  uint32_t has_output_limits;
+  /**
+   * Output magnitude limits `lo < hi` (infinite ends allowed).
+   */
+  double output_limits[2];
+  /**
+   * Nonzero: limit the output's rate to `rate_limit` units per second.
+   */
+  uint32_t has_rate_limit;
+  /**
+   * Output rate limit (> 0), units per second.
+   */
+  double rate_limit;
+  /**
+   * Nonzero: bumpless start, the first output is `initial_output` when feasible.
+   */
+  uint32_t has_initial_output;
+  /**
+   * The output the first step starts from.
+   */
+  double initial_output;
 } FamccConfig_f64;
 
 /**
@@ -991,9 +1062,30 @@ typedef struct FamccDiagnostics_f32 {
    */
   uint64_t clamp_count;
   /**
-   * The output `v`.
+   * The output `v` (after the output limits, when configured).
    */
   float v;
+  /**
+   * The law's output before the output limits.
+   */
+  float v_unlimited;
+  /**
+   * Nonzero with integral action (then `integral` is valid).
+   */
+  uint32_t has_integral;
+  /**
+   * Nonzero when the last step added its sample to the integral.
+   */
+  uint32_t integrating;
+  /**
+   * The integral of the error the output used.
+   */
+  float integral;
+  /**
+   * Steps at which the bounds expanded while the actuator was known to
+   * have headroom (output limits set or `*_step_applied` used).
+   */
+  uint64_t unsaturated_expansions;
 } FamccDiagnostics_f32;
 
 /**
@@ -1079,9 +1171,30 @@ typedef struct FamccDiagnostics_f64 {
    */
   uint64_t clamp_count;
   /**
-   * The output `v`.
+   * The output `v` (after the output limits, when configured).
    */
   double v;
+  /**
+   * The law's output before the output limits.
+   */
+  double v_unlimited;
+  /**
+   * Nonzero with integral action (then `integral` is valid).
+   */
+  uint32_t has_integral;
+  /**
+   * Nonzero when the last step added its sample to the integral.
+   */
+  uint32_t integrating;
+  /**
+   * The integral of the error the output used.
+   */
+  double integral;
+  /**
+   * Steps at which the bounds expanded while the actuator was known to
+   * have headroom (output limits set or `*_step_applied` used).
+   */
+  uint64_t unsaturated_expansions;
 } FamccDiagnostics_f64;
 
 /**
@@ -1102,6 +1215,27 @@ typedef struct FamccO3F32 {
 typedef struct FamccO3F64 {
   uint64_t _opaque[FAMCC_O3_F64_WORDS];
 } FamccO3F64;
+
+/**
+ * One legal but risky choice of a configuration (famcc-core's
+ * `Config::lint`): the parameter and the whole finding in words, naming the
+ * rule, the configuration's number and a suggested value (NUL-terminated,
+ * truncated if needed).
+ */
+typedef struct FamccFinding {
+  /**
+   * Zero-based stage for per-stage parameters, -1 otherwise.
+   */
+  int32_t stage;
+  /**
+   * The parameter to change (`dt`, `rho_e`, `k`, `estimate_limits`, ...).
+   */
+  char parameter[32];
+  /**
+   * The finding: the risk, the rule, the number and the suggestion.
+   */
+  char message[480];
+} FamccFinding;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1159,8 +1293,9 @@ FamccStatus famcc_o2_f32_init_sized(struct FamccO2F32 *storage,
 
 /**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
- * the control `v` to hold until the next sample. On error `*v` and the state
- * are unchanged.
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
  */
 FamccStatus famcc_o2_f32_step(struct FamccO2F32 *c, float e, float *v);
 
@@ -1323,6 +1458,43 @@ FamccStatus famcc_o3_f64_reset(struct FamccO3F64 *c);
  * See `famcc_o2_f32_diagnostics`.
  */
 FamccStatus famcc_o3_f64_diagnostics(const struct FamccO3F64 *c, FamccDiagnosticsF64 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH
+ * at order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o2_f32_lint(const struct FamccO2F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `famcc_o2_f32_lint` for `FamccO2F64`.
+ */
+FamccStatus famcc_o2_f64_lint(const struct FamccO2F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `famcc_o2_f32_lint` for `FamccO3F32`.
+ */
+FamccStatus famcc_o3_f32_lint(const struct FamccO3F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `famcc_o2_f32_lint` for `FamccO3F64`.
+ */
+FamccStatus famcc_o3_f64_lint(const struct FamccO3F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
 
 #ifdef __cplusplus
 } // extern "C"

@@ -196,6 +196,7 @@ pub(crate) fn to_config<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<C
     } else {
         None
     };
+    let [out_lo, out_hi] = c.output_limits;
     let mut b = Config::<T, N>::builder(c.dt, used, constraint, c.k_u)
         .settle_time(c.settle_time)
         .k0(c.k0)
@@ -214,7 +215,11 @@ pub(crate) fn to_config<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<C
         )?)
         .differentiator(differentiator)
         .initial_derivatives((c.has_initial_derivatives != 0).then(|| first_n(&c.initial_derivatives)))
-        .estimate_limits((c.has_estimate_limits != 0).then(|| first_n(&c.estimate_limits)));
+        .estimate_limits((c.has_estimate_limits != 0).then(|| first_n(&c.estimate_limits)))
+        .integral(c.integral != 0)
+        .output_limits((c.has_output_limits != 0).then_some((out_lo, out_hi)))
+        .rate_limit((c.has_rate_limit != 0).then_some(c.rate_limit))
+        .initial_output((c.has_initial_output != 0).then_some(c.initial_output));
     b = match c.flexible {
         x if x == FamccFlexible::Off as u32 => b.rho_e(None),
         x if x == FamccFlexible::On as u32 => b.rho_e(Some(c.rho_e)),
@@ -257,6 +262,13 @@ pub(crate) fn defaults<T: Real>() -> FamccConfig<T> {
         initial_derivatives: [z; FAMCC_MAX_ORDER],
         has_estimate_limits: 0,
         estimate_limits: [z; FAMCC_MAX_ORDER],
+        integral: 0,
+        has_output_limits: 0,
+        output_limits: [z; 2],
+        has_rate_limit: 0,
+        rate_limit: z,
+        has_initial_output: 0,
+        initial_output: z,
     }
 }
 
@@ -284,5 +296,10 @@ pub(crate) fn diag_to_c<T: Real, const N: usize>(d: &Diagnostics<T, N>) -> Famcc
         saturation_gap: d.saturation_gap.unwrap_or_else(T::zero),
         clamp_count: d.clamp_count,
         v: d.v,
+        v_unlimited: d.v_unlimited,
+        has_integral: u32::from(d.integral.is_some()),
+        integrating: u32::from(d.integrating),
+        integral: d.integral.unwrap_or_else(T::zero),
+        unsaturated_expansions: d.unsaturated_expansions,
     }
 }

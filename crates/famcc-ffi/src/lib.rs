@@ -27,6 +27,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 mod convert;
+mod lint;
 mod storage;
 pub mod types;
 
@@ -390,6 +391,55 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     unsafe { abort() }
 }
 
+/// The legal but risky choices of the controller's configuration
+/// (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+/// chatters, rho_e too large for eps, no estimate limits or the exact ZOH
+/// at order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+/// when `capacity` is 0) and their number to `*count`; at most
+/// `FAMCC_MAX_FINDINGS`.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f32_lint(
+    c: *const FamccO2F32,
+    out: *mut FamccFinding,
+    capacity: usize,
+    count: *mut usize,
+) -> FamccStatus {
+    lint::lint::<_, f32, 2>(c, MAGIC_O2_F32, out, capacity, count)
+}
+
+/// `famcc_o2_f32_lint` for `FamccO2F64`.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f64_lint(
+    c: *const FamccO2F64,
+    out: *mut FamccFinding,
+    capacity: usize,
+    count: *mut usize,
+) -> FamccStatus {
+    lint::lint::<_, f64, 2>(c, MAGIC_O2_F64, out, capacity, count)
+}
+
+/// `famcc_o2_f32_lint` for `FamccO3F32`.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f32_lint(
+    c: *const FamccO3F32,
+    out: *mut FamccFinding,
+    capacity: usize,
+    count: *mut usize,
+) -> FamccStatus {
+    lint::lint::<_, f32, 3>(c, MAGIC_O3_F32, out, capacity, count)
+}
+
+/// `famcc_o2_f32_lint` for `FamccO3F64`.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f64_lint(
+    c: *const FamccO3F64,
+    out: *mut FamccFinding,
+    capacity: usize,
+    count: *mut usize,
+) -> FamccStatus {
+    lint::lint::<_, f64, 3>(c, MAGIC_O3_F64, out, capacity, count)
+}
+
 /// The prebuilt `core` of hosted targets is compiled with unwinding and
 /// references this personality routine; this crate is `panic = "abort"` and
 /// never unwinds, so it is never called (bare-metal builds rebuild `core`
@@ -400,3 +450,6 @@ pub extern "C" fn rust_eh_personality() {}
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod tests_options;

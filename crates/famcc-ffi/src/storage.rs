@@ -136,6 +136,14 @@ pub(crate) unsafe fn reset<S, T: Real, const N: usize>(storage: *mut S, tag: u64
         Err(st) => st,
     }
 }
+/// The configuration of the controller in `storage` (checked as every call).
+pub(crate) unsafe fn slot_config<'a, S, T: Real, const N: usize>(
+    storage: *const S,
+    tag: u64,
+) -> Result<&'a famcc_core::Config<T, N>, FamccStatus> {
+    slot_ref::<S, T, N>(storage, tag).map(|s| s.ctrl.config())
+}
+
 pub(crate) unsafe fn diagnostics<S, T: Real, const N: usize>(
     storage: *const S,
     tag: u64,

@@ -319,6 +319,25 @@ pub struct FamccConfig<T: Copy> {
     pub has_estimate_limits: u32,
     /// Estimate limits (> 0, infinity allowed).
     pub estimate_limits: [T; FAMCC_MAX_ORDER],
+    /// Nonzero: integral action (docs/design.md §3.8). The controller's
+    /// order is then the law's, the plant's + 1: an order-3 controller for
+    /// an order-2 plant, with `stages[0..2]`, the differentiator of the
+    /// plant's order in `a[0..order-1]`, and the arrays above in the law's
+    /// coordinates (slot 0 the integral: `initial_derivatives[2..order]` are
+    /// the plant's `z2..zn`, `estimate_limits[0]` is ignored).
+    pub integral: u32,
+    /// Nonzero: limit the output to `[output_limits[0], output_limits[1]]`.
+    pub has_output_limits: u32,
+    /// Output magnitude limits `lo < hi` (infinite ends allowed).
+    pub output_limits: [T; 2],
+    /// Nonzero: limit the output's rate to `rate_limit` units per second.
+    pub has_rate_limit: u32,
+    /// Output rate limit (> 0), units per second.
+    pub rate_limit: T,
+    /// Nonzero: bumpless start, the first output is `initial_output` when feasible.
+    pub has_initial_output: u32,
+    /// The output the first step starts from.
+    pub initial_output: T,
 }
 
 /// What the last step did (mirrors `famcc_core::Diagnostics`; arrays hold
@@ -359,9 +378,38 @@ pub struct FamccDiagnostics<T> {
     pub saturation_gap: T,
     /// Steps at which `|xi|` had to be clamped below 1.
     pub clamp_count: u64,
-    /// The output `v`.
+    /// The output `v` (after the output limits, when configured).
     pub v: T,
+    /// The law's output before the output limits.
+    pub v_unlimited: T,
+    /// Nonzero with integral action (then `integral` is valid).
+    pub has_integral: u32,
+    /// Nonzero when the last step added its sample to the integral.
+    pub integrating: u32,
+    /// The integral of the error the output used.
+    pub integral: T,
+    /// Steps at which the bounds expanded while the actuator was known to
+    /// have headroom (output limits set or `*_step_applied` used).
+    pub unsaturated_expansions: u64,
 }
+
+/// One legal but risky choice of a configuration (famcc-core's
+/// `Config::lint`): the parameter and the whole finding in words, naming the
+/// rule, the configuration's number and a suggested value (NUL-terminated,
+/// truncated if needed).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct FamccFinding {
+    /// Zero-based stage for per-stage parameters, -1 otherwise.
+    pub stage: i32,
+    /// The parameter to change (`dt`, `rho_e`, `k`, `estimate_limits`, ...).
+    pub parameter: [c_char; 32],
+    /// The finding: the risk, the rule, the number and the suggestion.
+    pub message: [c_char; 480],
+}
+
+/// The largest number of findings `*_lint` writes (one per kind of risk).
+pub const FAMCC_MAX_FINDINGS: usize = 5;
 
 /// Why a configuration was rejected (NUL-terminated, truncated if needed).
 #[repr(C)]

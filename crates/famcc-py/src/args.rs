@@ -8,7 +8,7 @@ use crate::errors::ConfigError;
 use crate::laws::{Law, SkewSpec};
 use crate::names::{ConstraintName, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::spec::{RhoE, Spec};
-use famcc_core::config::check_order;
+use famcc_core::config::{check_order, MAX_ORDER};
 use famcc_core::{differentiator, Constraint};
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
@@ -50,6 +50,10 @@ pub struct Args<'a, 'py> {
     pub transition: &'a str,
     pub initial_derivatives: Option<Vec<f64>>,
     pub dtype: &'a str,
+    pub integral: bool,
+    pub output_limits: Option<(f64, f64)>,
+    pub rate_limit: Option<f64>,
+    pub initial_output: Option<f64>,
 }
 
 /// One value for every stage, or a list or tuple of exactly `n`.
@@ -82,7 +86,19 @@ impl Args<'_, '_> {
     pub fn parse(self) -> PyResult<Spec> {
         let order = usize::try_from(self.order).unwrap_or(0);
         check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {})", self.order)))?;
-        let n = order - 1;
+        if self.integral && order >= MAX_ORDER {
+            return Err(ConfigError::new_err(format!(
+                "integral=True needs order <= {} (the law has order + 1 <= MAX_ORDER = {MAX_ORDER}), got {order}",
+                MAX_ORDER - 1
+            )));
+        }
+        // Stages of the law: order - 1, or order with integral action.
+        let n = order - 1 + usize::from(self.integral);
+        let stages_rule = if self.integral {
+            "feedback must have order (integral=True: one law per stage of the order + 1 law)"
+        } else {
+            "feedback must have order - 1"
+        };
         let laws: Vec<Law> = match self.feedback {
             Some(f) if n == 0 => {
                 if !f.len().map(|l| l == 0).unwrap_or(false) {
@@ -92,9 +108,7 @@ impl Args<'_, '_> {
                 }
                 vec![]
             }
-            Some(f) => per_stage(f, n, "feedback must have order - 1", |o| {
-                Law::extract_named(o, "feedback")
-            })?,
+            Some(f) => per_stage(f, n, stages_rule, |o| Law::extract_named(o, "feedback"))?,
             None if n == 0 => vec![],
             None => {
                 return Err(ConfigError::new_err(
@@ -103,14 +117,23 @@ impl Args<'_, '_> {
             }
         };
         let skews: Vec<Option<SkewSpec>> = match self.skew {
-            Some(s) if n > 0 => per_stage(s, n, "skew must have order - 1", SkewSpec::extract)?,
+            Some(s) if n > 0 => per_stage(
+                s,
+                n,
+                if self.integral {
+                    "skew must have order"
+                } else {
+                    "skew must have order - 1"
+                },
+                SkewSpec::extract,
+            )?,
             _ => vec![None; n],
         };
         let constraint = parse_constraint(CONSTRAINT.parse(self.constraint, "constraint")?, self.eps)?;
         let differentiator = match self.differentiator {
             None => None,
             Some(DiffArg::Name(s)) if s == AUTO => differentiator::needed_at(order)
-                .then(|| HighGain::paper(order))
+                .then(|| HighGain::auto(order))
                 .transpose()?,
             Some(DiffArg::Name(s)) => {
                 return Err(not_a(
@@ -136,9 +159,10 @@ impl Args<'_, '_> {
             }
         };
         if let Some(d) = &self.initial_derivatives {
-            if d.len() != n {
+            if d.len() != order - 1 {
                 return Err(ConfigError::new_err(format!(
-                    "initial_derivatives must have order - 1 = {n} entries (z2..zn), got {}",
+                    "initial_derivatives must have order - 1 = {} entries (z2..zn), got {}",
+                    order - 1,
                     d.len()
                 )));
             }
@@ -172,6 +196,10 @@ impl Args<'_, '_> {
             differentiator,
             initial_derivatives: self.initial_derivatives,
             dtype: DTYPE.parse(self.dtype, "dtype")?,
+            integral: self.integral,
+            output_limits: self.output_limits,
+            rate_limit: self.rate_limit,
+            initial_output: self.initial_output,
         })
     }
 }

@@ -74,39 +74,9 @@ fn threads_for(n: usize) -> usize {
         .unwrap_or(1)
 }
 
-#[pymethods]
 impl ControllerBank {
-    #[new]
-    fn new(controller: &PyController, n: i64) -> PyResult<Self> {
-        let n = usize::try_from(n)
-            .ok()
-            .filter(|n| *n >= 1)
-            .ok_or_else(|| ConfigError::new_err(format!("n must be >= 1 (got {n})")))?;
-        Ok(Self {
-            cores: controller.core.replicate(n),
-            spec: controller.spec.clone(),
-            n,
-            overflows: 0,
-        })
-    }
-
-    fn __len__(&self) -> usize {
-        self.n
-    }
-
-    /// Steps controller i with e[i]; returns the outputs. Equal to stepping
-    /// the copies one by one. Non-finite entries raise `StepError` before any
-    /// controller moves. Large batches release the GIL and are split across
-    /// threads. A controller whose law overflows on a valid sample
-    /// consumes it and repeats its previous output (counted in `overflows`).
-    fn step<'py>(
-        &mut self,
-        py: Python<'py>,
-        e: PyReadonlyArray1<'py, f64>,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let e = e
-            .as_slice()
-            .map_err(|_| StepError::new_err("e must be a contiguous float64 array"))?;
+    /// `step` on an error slice.
+    fn step_errors<'py>(&mut self, py: Python<'py>, e: &[f64]) -> PyResult<Bound<'py, PyArray1<f64>>> {
         if e.len() != self.n {
             return Err(StepError::new_err(format!(
                 "e must have length {} (one per controller), got {}",
@@ -128,6 +98,70 @@ impl ControllerBank {
             step_all(cores, e, &mut out, 1)
         };
         Ok(PyArray1::from_vec(py, out))
+    }
+}
+
+#[pymethods]
+impl ControllerBank {
+    #[new]
+    fn new(controller: &PyController, n: i64) -> PyResult<Self> {
+        let n = usize::try_from(n)
+            .ok()
+            .filter(|n| *n >= 1)
+            .ok_or_else(|| ConfigError::new_err(format!("n must be >= 1 (got {n})")))?;
+        Ok(Self {
+            cores: controller.core.replicate(n),
+            spec: controller.spec.clone(),
+            n,
+            overflows: 0,
+        })
+    }
+
+    fn __len__(&self) -> usize {
+        self.n
+    }
+
+    /// Steps controller i with e[i] (`e = y - y_d`: output minus reference,
+    /// the opposite of a PID's `setpoint - y`); returns the outputs. Equal to
+    /// stepping the copies one by one. Non-finite entries raise `StepError`
+    /// before any controller moves. Large batches release the GIL and are
+    /// split across threads. A controller whose law overflows on a valid
+    /// sample consumes it and repeats its previous output (counted in
+    /// `overflows`).
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        e: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let e = e
+            .as_slice()
+            .map_err(|_| StepError::new_err("e must be a contiguous float64 array"))?;
+        self.step_errors(py, e)
+    }
+
+    /// Steps controller i with the error `e[i] = y[i] - y_d[i]` (output minus
+    /// reference, the opposite of a PID's `setpoint - y`); as `step`.
+    fn step_output<'py>(
+        &mut self,
+        py: Python<'py>,
+        y: PyReadonlyArray1<'py, f64>,
+        y_d: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (y, y_d) = (
+            y.as_slice()
+                .map_err(|_| StepError::new_err("y must be a contiguous float64 array"))?,
+            y_d.as_slice()
+                .map_err(|_| StepError::new_err("y_d must be a contiguous float64 array"))?,
+        );
+        if y.len() != y_d.len() {
+            return Err(StepError::new_err(format!(
+                "y and y_d must have the same length, got {} and {}",
+                y.len(),
+                y_d.len()
+            )));
+        }
+        let e: Vec<f64> = y.iter().zip(y_d).map(|(y, r)| y - r).collect();
+        self.step_errors(py, &e)
     }
 
     /// The constraint variables xi~ of the last step (NumPy array).

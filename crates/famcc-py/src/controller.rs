@@ -10,8 +10,10 @@ use crate::names::{CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::spec::{RhoE, Spec};
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
+use std::ffi::CString;
 
 /// The FAMCC controller (see `famcc.Controller` for the documentation).
 #[pyclass(module = "famcc._core", name = "Controller")]
@@ -19,6 +21,29 @@ use pyo3::types::{PyDict, PyList, PyTuple};
 pub struct PyController {
     pub core: Core,
     pub spec: Spec,
+    /// The health warning was given (once per controller).
+    health_warned: bool,
+}
+
+/// The health warning fires once the bounds were expanded with headroom
+/// for this fraction of the envelope's settling time `T_s` (in samples).
+const HEALTH_FRACTION: f64 = 0.5;
+
+/// `2 atanh 0.5 = ln 3`: `k_u` must exceed the hold input divided by it.
+const TWO_ATANH_HALF: f64 = 1.0986122886681098;
+
+/// Emits `famcc.DesignWarning` (a `UserWarning` when famcc's Python package
+/// is not importable).
+pub fn design_warning(py: Python<'_>, message: &str) -> PyResult<()> {
+    let category = match py
+        .import("famcc._common")
+        .and_then(|m| m.getattr("DesignWarning"))
+    {
+        Ok(c) => c,
+        Err(_) => py.get_type::<PyUserWarning>().into_any(),
+    };
+    let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    PyErr::warn(py, &category, &text, 2)
 }
 
 impl PyController {
@@ -27,11 +52,49 @@ impl PyController {
     pub fn from_spec(mut spec: Spec) -> PyResult<Self> {
         let core = Core::build(&spec).map_err(config_err)?;
         spec.rho_e = RhoE::Given(core.rho_e());
-        Ok(Self { core, spec })
+        Ok(Self {
+            core,
+            spec,
+            health_warned: false,
+        })
     }
 
     pub fn set_state_vec(&mut self, v: &[f64]) -> PyResult<()> {
         self.core.set_state(v)
+    }
+
+    /// After a successful step: the health warning, once, when the bounds
+    /// expanded while the actuator had headroom (only counted when the
+    /// applied input is known, so nothing to check otherwise).
+    #[inline]
+    fn check_health(&mut self, applied: Option<f64>) -> PyResult<()> {
+        if self.health_warned || (applied.is_none() && self.spec.output_limits.is_none()) {
+            return Ok(());
+        }
+        let n = self.core.unsaturated_expansions();
+        // Persistent, not a transient: expanded with headroom for half the
+        // envelope's settling time in total (the flexible boundary's recovery
+        // after a saturation, or a start-up transient, stays below it).
+        let persistent = (HEALTH_FRACTION * self.spec.settle_time / self.spec.dt)
+            .ceil()
+            .max(1.0);
+        if (n as f64) < persistent {
+            return Ok(());
+        }
+        self.health_warned = true;
+        let (v, k_u) = self.core.last_unlimited();
+        let suggested = (2.0 * k_u).max(v.abs() / TWO_ATANH_HALF);
+        Python::attach(|py| {
+            design_warning(
+                py,
+                &format!(
+                    "k_u too small for this plant: the bounds expanded {n} times while the actuator had \
+                     headroom; raise k_u to {suggested:.3} (k_u >= |u_hold| / (2 atanh 0.5), u_hold the \
+                     input that holds the error still, about |v| = {:.3} here) or lower rho_e",
+                    v.abs()
+                ),
+            )
+        })
     }
 }
 
@@ -42,7 +105,8 @@ impl PyController {
         settle_time = DEFAULT_SETTLE_TIME, k0 = DEFAULT_K0, k_u, gamma = GAMMA.default_name(),
         rho_e = Some(RhoArg::Name(String::from(AUTO))), differentiator = Some(DiffArg::Name(String::from(AUTO))),
         latch = LATCH.default_name(), transition = TRANSITION.default_name(), initial_derivatives = None,
-        dtype = DTYPE.default_name()))]
+        dtype = DTYPE.default_name(), integral = false, output_limits = None, rate_limit = None,
+        initial_output = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         order: i64,
@@ -61,6 +125,11 @@ impl PyController {
         transition: &str,
         initial_derivatives: Option<Vec<f64>>,
         dtype: &str,
+        integral: bool,
+        output_limits: Option<(f64, f64)>,
+        rate_limit: Option<f64>,
+        initial_output: Option<f64>,
+        py: Python<'_>,
     ) -> PyResult<Self> {
         let spec = Args {
             order,
@@ -79,9 +148,18 @@ impl PyController {
             transition,
             initial_derivatives,
             dtype,
+            integral,
+            output_limits,
+            rate_limit,
+            initial_output,
         }
         .parse()?;
-        Self::from_spec(spec)
+        let c = Self::from_spec(spec)?;
+        // Legal but risky choices (famcc-core's Config::lint), once each.
+        for finding in c.core.lint() {
+            design_warning(py, &finding)?;
+        }
+        Ok(c)
     }
 
     /// Sample period, s.
@@ -108,28 +186,58 @@ impl PyController {
         self.core.time()
     }
 
-    /// One output-feedback step: error sample `e = y - y_d` in, control `v` out.
+    /// One output-feedback step: error sample `e = y - y_d` (output minus
+    /// reference, the opposite of a PID's `setpoint - y`) in, control `v` out.
     /// `applied` is the input the actuator really gave at the previous sample,
     /// when known (diagnostics then report the saturation gap).
     #[pyo3(signature = (e, applied = None))]
     #[inline]
     fn step(&mut self, e: f64, applied: Option<f64>) -> PyResult<f64> {
-        self.core.step(e, applied).map_err(step_err)
+        let v = self.core.step(e, applied).map_err(step_err)?;
+        self.check_health(applied)?;
+        Ok(v)
     }
 
-    /// One step with a one-off sample period `dt` (s).
+    /// One step from the measured output `y` and the reference `y_d`: the
+    /// error is `e = y - y_d` (the opposite of a PID's `setpoint - y`).
+    #[pyo3(signature = (y, y_d, applied = None))]
+    fn step_output(&mut self, y: f64, y_d: f64, applied: Option<f64>) -> PyResult<f64> {
+        let v = self.core.step_output(y, y_d, applied).map_err(step_err)?;
+        self.check_health(applied)?;
+        Ok(v)
+    }
+
+    /// One step with a one-off sample period `dt` (s); `e = y - y_d`.
     #[pyo3(signature = (e, dt, applied = None))]
     fn step_dt(&mut self, e: f64, dt: f64, applied: Option<f64>) -> PyResult<f64> {
-        self.core.step_dt(e, dt, applied).map_err(step_err)
+        let v = self.core.step_dt(e, dt, applied).map_err(step_err)?;
+        self.check_health(applied)?;
+        Ok(v)
     }
 
-    /// One state-feedback step with the measured error vector `z = (z1..zn)`.
+    /// One state-feedback step with the measured error vector `z = (z1..zn)`,
+    /// `z1 = y - y_d` (with integral action the controller prepends its own
+    /// integral).
     #[pyo3(signature = (z, applied = None))]
     fn step_state(&mut self, z: &Bound<'_, PyAny>, applied: Option<f64>) -> PyResult<f64> {
         let z: Vec<f64> = z
             .extract()
             .map_err(|_| StepError::new_err("z must be a sequence of floats"))?;
-        self.core.step_state(&z, applied)
+        let v = self.core.step_state(&z, applied, self.spec.integral)?;
+        self.check_health(applied)?;
+        Ok(v)
+    }
+
+    /// The legal but risky choices of this configuration, as messages (each
+    /// was emitted as a `famcc.DesignWarning` at construction).
+    fn lint(&self) -> Vec<String> {
+        self.core.lint()
+    }
+
+    /// True with integral action.
+    #[getter]
+    fn integral(&self) -> bool {
+        self.spec.integral
     }
 
     /// Back to the state before the first step.
@@ -143,14 +251,16 @@ impl PyController {
         self.core.diagnostics()
     }
 
-    /// The estimate the next step will use (NumPy array).
+    /// The estimate the next step will use (NumPy array; with integral
+    /// action the integral `I` first, then the plant's `z1..zn`).
     #[getter]
     fn estimate<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.core.estimate())
     }
 
     /// The state as a float vector, laid out as `STATE_FIELDS` followed by
-    /// the estimate `z_hat[0..order]`.
+    /// the estimate `z_hat[0..order]` (with integral action `order + 1`
+    /// entries: the integral `I` first).
     fn state<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.core.state())
     }

@@ -46,9 +46,23 @@ pub struct Diagnostics {
     /// Steps at which |xi| had to be clamped below 1.
     #[pyo3(get)]
     clamp_count: u64,
-    /// The output v.
+    /// The output returned (after the output limits, when configured).
     #[pyo3(get)]
     v: f64,
+    /// The law's output -k_u Gamma(xi) before the output limits.
+    #[pyo3(get)]
+    v_unlimited: f64,
+    /// The integral I of the error the output used (integral=True), else None.
+    #[pyo3(get)]
+    integral: Option<f64>,
+    /// True when this step added its sample to I (False while the integral
+    /// separation froze it, and without integral action).
+    #[pyo3(get)]
+    integrating: bool,
+    /// Steps so far at which the bounds were expanded while the actuator was
+    /// known to have headroom (`applied` passed or output limits set).
+    #[pyo3(get)]
+    unsaturated_expansions: u64,
 }
 
 impl Diagnostics {
@@ -70,6 +84,10 @@ impl Diagnostics {
             saturation_gap: d.saturation_gap.map(f),
             clamp_count: d.clamp_count,
             v: f(d.v),
+            v_unlimited: f(d.v_unlimited),
+            integral: d.integral.map(f),
+            integrating: d.integrating,
+            unsaturated_expansions: d.unsaturated_expansions,
         }
     }
 }

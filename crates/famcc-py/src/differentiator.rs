@@ -5,7 +5,7 @@ use crate::errors::{config_err, ConfigError};
 use crate::names::DISCRETIZATION;
 use crate::orders::with_order;
 use famcc_core::config::{check_estimate_limits, check_order};
-use famcc_core::differentiator::{paper_coefficients, PAPER_MU};
+use famcc_core::differentiator::{auto_discretization, paper_coefficients, PAPER_MU};
 use famcc_core::{Discretization, Real};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -31,9 +31,30 @@ impl HighGain {
         Self::default(order, PAPER_MU, DISCRETIZATION.default_name())
     }
 
+    /// famcc's default differentiator ("auto", famcc-core's
+    /// `HighGain::auto_for`): the paper's up to order 3, Tustin with the
+    /// binomial `(s + 2)^n` and `mu = 0.01` from order 4 on.
+    pub fn auto(order: usize) -> PyResult<Self> {
+        let name = DISCRETIZATION.name(auto_discretization(order));
+        Self::default(order, PAPER_MU, name)
+    }
+
     /// The core's differentiator of order `N` (`a` must have `N` entries).
     pub fn core<T: Real, const N: usize>(&self) -> Option<famcc_core::HighGain<T, N>> {
-        let a = to_array::<T, N>(&self.a)?;
+        self.core_padded(0)
+    }
+
+    /// The core's differentiator in an `N`-sized array with `pad` trailing
+    /// zero coefficients (`a` must have `N - pad` entries): with integral
+    /// action (`pad = 1`) the core runs it at order `N - 1`.
+    pub fn core_padded<T: Real, const N: usize>(&self, pad: usize) -> Option<famcc_core::HighGain<T, N>> {
+        let full: Vec<f64> = self
+            .a
+            .iter()
+            .copied()
+            .chain(core::iter::repeat_n(0.0, pad))
+            .collect();
+        let a = to_array::<T, N>(&full)?;
         Some(famcc_core::HighGain::new(
             T::from_f64(self.mu),
             a,
@@ -41,22 +62,36 @@ impl HighGain {
         ))
     }
 
-    /// The estimate limits of order `N`, if any.
-    pub fn core_limits<T: Real, const N: usize>(&self) -> Option<[T; N]> {
-        self.limits.as_deref().and_then(to_array::<T, N>)
+    /// The estimate limits in an `N`-sized array after `shift` leading
+    /// unlimited slots (the integral's, with integral action), if any.
+    pub fn core_limits_shifted<T: Real, const N: usize>(&self, shift: usize) -> Option<[T; N]> {
+        let l = self.limits.as_deref()?;
+        let full: Vec<f64> = core::iter::repeat_n(f64::INFINITY, shift)
+            .chain(l.iter().copied())
+            .collect();
+        to_array::<T, N>(&full)
     }
 
-    /// The object of a core differentiator and its estimate limits.
+    /// The object of a core differentiator and its estimate limits, whose
+    /// plant's entries start at slot `off` (1 with integral action).
     pub fn from_core<T: Real, const N: usize>(
         h: &famcc_core::HighGain<T, N>,
         limits: Option<&[T; N]>,
+        off: usize,
     ) -> Self {
-        let v = |x: &[T; N]| x.iter().map(|x| x.to_f64_lossless()).collect::<Vec<_>>();
+        let v = |x: &[T], skip: usize, take: usize| {
+            x.iter()
+                .skip(skip)
+                .take(take)
+                .map(|x| x.to_f64_lossless())
+                .collect::<Vec<_>>()
+        };
+        let order = N - off;
         Self {
             mu: h.mu.to_f64_lossless(),
-            a: v(&h.a),
+            a: v(&h.a, 0, order),
             discretization: h.discretization,
-            limits: limits.map(v),
+            limits: limits.map(|l| v(l, off, order)),
         }
     }
 }

@@ -48,7 +48,7 @@ macro_rules! cores {
         impl Core {
             /// The controller `spec` describes.
             pub fn build(spec: &Spec) -> Result<Self, ConfigError> {
-                match (spec.order, spec.dtype) {
+                match (spec.law_order(), spec.dtype) {
                     $(($n, DType::F64) => spec.config::<f64, $n>().map(|c| Core::$v64(Controller::new(c))),
                       ($n, DType::F32) => spec.config::<f32, $n>().map(|c| Core::$v32(Controller::new(c))),)*
                     (n, _) => Err(match check_order(n) {
@@ -98,6 +98,31 @@ impl Core {
         })
     }
 
+    /// The lint findings of the configuration (famcc-core's `Config::lint`), as text.
+    pub fn lint(&self) -> Vec<String> {
+        with_core!(self, c => c.config().lint().iter().map(|f| f.to_string()).collect())
+    }
+
+    /// Expansions while the actuator had headroom, so far.
+    #[inline]
+    pub fn unsaturated_expansions(&self) -> u64 {
+        with_core!(self, c => c.unsaturated_expansions())
+    }
+
+    /// The last output before the output limits, and `k_u`.
+    pub fn last_unlimited(&self) -> (f64, f64) {
+        with_core!(self, c => (c.diagnostics().v_unlimited.to_f64_lossless(), c.config().k_u().to_f64_lossless()))
+    }
+
+    pub fn step_output(&mut self, y: f64, y_d: f64, applied: Option<f64>) -> Result<f64, StepError> {
+        with_core!(self, c => {
+            let (yc, ydc, ac) = (Real::from_f64(y), Real::from_f64(y_d), applied.map(Real::from_f64));
+            check_range(y, yc, applied, ac)?;
+            check_range(y_d, ydc, None, None)?;
+            c.step_output(yc, ydc, ac).map(|v| v.to_f64_lossless())
+        })
+    }
+
     pub fn step_dt(&mut self, e: f64, dt: f64, applied: Option<f64>) -> Result<f64, StepError> {
         with_core!(self, c => {
             let (ec, ac) = (Real::from_f64(e), applied.map(Real::from_f64));
@@ -106,10 +131,14 @@ impl Core {
         })
     }
 
-    pub fn step_state(&mut self, z: &[f64], applied: Option<f64>) -> PyResult<f64> {
+    /// A state-feedback step from the plant's `z = (z1..zn)`; with integral
+    /// action the core's vector gets a leading slot (its own integral).
+    pub fn step_state(&mut self, z: &[f64], applied: Option<f64>, integral: bool) -> PyResult<f64> {
+        let off = usize::from(integral);
         with_core!(self, c => {
-            let z = to_array(z).ok_or_else(|| {
-                PyStepError::new_err(format!("z must have {} entries (one per order), got {}", c.estimate().len(), z.len()))
+            let full: Vec<f64> = core::iter::repeat_n(0.0, off).chain(z.iter().copied()).collect();
+            let z = to_array(&full).ok_or_else(|| {
+                PyStepError::new_err(format!("z must have {} entries (one per order), got {}", c.estimate().len() - off, z.len()))
             })?;
             c.step_state_applied(z, applied.map(Real::from_f64)).map(|v| v.to_f64_lossless()).map_err(step_err)
         })

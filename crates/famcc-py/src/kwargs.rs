@@ -54,6 +54,20 @@ impl Spec {
         for key in CONFIG_KEYS {
             d.set_item(key, self.item(py, key, false)?)?;
         }
+        // The options beyond the paper, only when used (so the paper's
+        // configurations keep their keyword arguments and repr).
+        if self.integral {
+            d.set_item("integral", true)?;
+        }
+        if let Some(l) = self.output_limits {
+            d.set_item("output_limits", l)?;
+        }
+        if let Some(r) = self.rate_limit {
+            d.set_item("rate_limit", r)?;
+        }
+        if let Some(u) = self.initial_output {
+            d.set_item("initial_output", u)?;
+        }
         Ok(d)
     }
 

@@ -35,10 +35,25 @@ pub struct Spec {
     /// `z2..zn`.
     pub initial_derivatives: Option<Vec<f64>>,
     pub dtype: DType,
+    /// Integral action: the core's law has order `order + 1`.
+    pub integral: bool,
+    pub output_limits: Option<(f64, f64)>,
+    pub rate_limit: Option<f64>,
+    pub initial_output: Option<f64>,
 }
 
 impl Spec {
-    /// famcc-core's validated configuration of order `N` in `T`.
+    /// The order of the core's law: the plant's `order`, plus 1 with
+    /// integral action.
+    pub fn law_order(&self) -> usize {
+        self.order + usize::from(self.integral)
+    }
+
+    /// famcc-core's validated configuration of law order `N` in `T`
+    /// ([`Spec::law_order`]; with integral action the plant's arrays are
+    /// laid out in the law's coordinates: the differentiator's coefficients
+    /// padded with a trailing 0, the estimate limits and the initial
+    /// derivatives shifted by the integral's slot).
     pub fn config<T: Real, const N: usize>(&self) -> Result<Config<T, N>, ConfigError> {
         let t = |x: f64| T::from_f64(x);
         let stages: Vec<_> = self
@@ -55,29 +70,37 @@ impl Spec {
         if let RhoE::Given(r) = self.rho_e {
             b = b.rho_e(r.map(t));
         }
+        let off = usize::from(self.integral);
         if let Some(h) = &self.differentiator {
             let core = h
-                .core::<T, N>()
+                .core_padded::<T, N>(off)
                 .ok_or(ConfigError::new("a", "must have one coefficient per order"))?;
             b = b
                 .differentiator(Some(core))
-                .estimate_limits(h.core_limits::<T, N>());
+                .estimate_limits(h.core_limits_shifted::<T, N>(off));
         }
         if let Some(d) = &self.initial_derivatives {
-            let full: Vec<f64> = core::iter::once(0.0).chain(d.iter().copied()).collect();
+            let full: Vec<f64> = core::iter::repeat_n(0.0, 1 + off)
+                .chain(d.iter().copied())
+                .collect();
             b = b.initial_derivatives(to_array::<T, N>(&full));
         }
-        b.build()
+        b.integral(self.integral)
+            .output_limits(self.output_limits.map(|(lo, hi)| (t(lo), t(hi))))
+            .rate_limit(self.rate_limit.map(t))
+            .initial_output(self.initial_output.map(t))
+            .build()
     }
 
     /// The spec of a famcc-core configuration.
     pub fn from_config<T: Real, const N: usize>(cfg: &Config<T, N>, dtype: DType) -> Self {
         let f = |x: T| x.to_f64_lossless();
+        let off = cfg.estimate_offset();
         let initial = cfg
             .initial_derivatives()
-            .map(|d| d.iter().skip(1).map(|x| f(*x)).collect());
+            .map(|d| d.iter().skip(1 + off).map(|x| f(*x)).collect());
         Spec {
-            order: N,
+            order: cfg.plant_order(),
             dt: f(cfg.dt()),
             stages: cfg
                 .laws()
@@ -99,9 +122,13 @@ impl Spec {
             transition: cfg.transition(),
             differentiator: cfg
                 .differentiator()
-                .map(|h| HighGain::from_core(h, cfg.estimate_limits())),
+                .map(|h| HighGain::from_core(h, cfg.estimate_limits(), off)),
             initial_derivatives: initial,
             dtype,
+            integral: cfg.integral(),
+            output_limits: cfg.output_limits().map(|(lo, hi)| (f(lo), f(hi))),
+            rate_limit: cfg.rate_limit().map(f),
+            initial_output: cfg.initial_output().map(f),
         }
     }
 }

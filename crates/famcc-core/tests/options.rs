@@ -1,0 +1,330 @@
+//! The options beyond the paper (docs/design.md §3.8, issue 13): integral
+//! action with integral separation, output magnitude and rate limits, the
+//! bumpless start, `step_output`, the health count, the unstable
+//! differentiator's `ConfigError` and `Config::lint`, in f64 and f32.
+#![allow(clippy::unwrap_used, clippy::indexing_slicing)]
+
+use famcc_core::config::Lint;
+use famcc_core::{
+    Config, ConfigBuilder, Constraint, Controller, Discretization, Feedback, HighGain, Real, Skew,
+};
+use famcc_paper::designs::{design, Design};
+use famcc_paper::{Example, Variant};
+
+const DT: f64 = 1e-3;
+
+/// A double integrator with a load: `x'' = u - d` (`d` = the input that
+/// holds it still), `e = x - y_d`; explicit Euler on the velocity first
+/// (symplectic), fine at 1 kHz.
+struct Plant {
+    x: f64,
+    v: f64,
+    d: f64,
+}
+
+impl Plant {
+    fn advance(&mut self, u: f64) {
+        self.v += DT * (u - self.d);
+        self.x += DT * self.v;
+    }
+}
+
+/// Order-2 plant; law order 3 with integral action (stage laws Linear(2)).
+fn builder<T: Real, const N: usize>(k_u: f64) -> ConfigBuilder<T, N> {
+    let t = T::from_f64;
+    let laws = [(Feedback::Linear { k: t(2.0) }, None::<Skew<T>>); 2];
+    let mut a = [T::zero(); N];
+    a[0] = t(4.0);
+    a[1] = t(4.0);
+    Config::<T, N>::builder(
+        t(DT),
+        &laws[..N - 1],
+        Constraint::Longitudinal { eps: t(2.0) },
+        t(k_u),
+    )
+    .settle_time(t(1.0))
+    .differentiator(Some(HighGain::new(t(0.01), a, Discretization::Exact)))
+}
+
+/// Regulates the loaded double integrator to 0 from `x = 0.5`; the tail's
+/// max |e| and the controller.
+fn regulate<const N: usize>(b: ConfigBuilder<f64, N>, load: f64, t_end: f64) -> (f64, Controller<f64, N>) {
+    let mut c = Controller::new(b.build().unwrap());
+    let mut p = Plant {
+        x: 0.5,
+        v: 0.0,
+        d: load,
+    };
+    let mut tail: f64 = 0.0;
+    let steps = (t_end / DT) as usize;
+    let mut prev = None;
+    for k in 0..steps {
+        let u = c.step_output(p.x, 0.0, prev).unwrap();
+        assert!(u.is_finite());
+        if k > steps - 1000 {
+            tail = tail.max(p.x.abs());
+        }
+        p.advance(u);
+        prev = Some(u);
+    }
+    (tail, c)
+}
+
+#[test]
+fn integral_action_removes_the_steady_error_under_a_load() {
+    let (without, _) = regulate(builder::<f64, 2>(4.0), 1.0, 20.0);
+    let (with, c) = regulate(builder::<f64, 3>(4.0).integral(true), 1.0, 20.0);
+    println!("steady |e|: without integral {without:.3e}, with {with:.3e}");
+    assert!(
+        without > 1e-2,
+        "the static law keeps an offset under a load ({without})"
+    );
+    assert!(with < 1e-4, "integral action removes it ({with})");
+    // The integral carries the load: I settles where the law outputs d.
+    let d = c.diagnostics();
+    assert!(d.integral.is_some() && (d.v - 1.0).abs() < 1e-2, "{d:?}");
+}
+
+#[test]
+fn integral_separation_freezes_the_integral_while_saturated() {
+    // A load (2) above the output limit (1.5): the output stays at the limit,
+    // the error keeps pushing it up, and the integral must not wind up.
+    let b = builder::<f64, 3>(4.0)
+        .integral(true)
+        .output_limits(Some((-1.5, 1.5)));
+    let (_, c) = regulate(b, 2.0, 5.0);
+    let d = c.diagnostics();
+    assert_eq!(d.v, 1.5);
+    assert!(d.v_unlimited > 1.5 && !d.integrating, "{d:?}");
+    // Frozen: the integral is no larger than a second of the error's worth.
+    let i = d.integral.unwrap();
+    assert!(i.abs() < 10.0, "wound up: I = {i}");
+}
+
+#[test]
+fn output_limits_and_rate_limits_hold() {
+    let b = builder::<f64, 2>(4.0)
+        .output_limits(Some((-1.0, 2.0)))
+        .rate_limit(Some(50.0))
+        .initial_output(Some(0.0));
+    let mut c = Controller::new(b.build().unwrap());
+    let mut prev = 0.0;
+    for k in 0..2000 {
+        let e = 3.0 * (k as f64 * 0.01).sin();
+        let u = c.step(e).unwrap();
+        assert!((-1.0..=2.0).contains(&u));
+        assert!(
+            (u - prev).abs() <= 50.0 * DT * (1.0 + 1e-12),
+            "rate at {k}: {prev} -> {u}"
+        );
+        assert_eq!(c.diagnostics().v, u);
+        prev = u;
+    }
+}
+
+#[test]
+fn bumpless_start_from_a_given_output() {
+    for u0 in [-3.0, -0.5, 0.0, 0.7, 2.5] {
+        // With integral action: I_0 is chosen.
+        let b = builder::<f64, 3>(4.0).integral(true).initial_output(Some(u0));
+        let v = Controller::new(b.build().unwrap()).step(0.05).unwrap();
+        assert!((v - u0).abs() < 1e-6 * (1.0 + u0.abs()), "integral: {v} vs {u0}");
+        // Without: the latch is rescaled when the sign of s_0 agrees (e = -1:
+        // s_0 = -2 < 0, the law pushes v > 0) and the widths allow it.
+        let b = builder::<f64, 2>(4.0).initial_output(Some(u0));
+        let v = Controller::new(b.build().unwrap()).step(-1.0).unwrap();
+        if u0 > 0.0 {
+            assert!((v - u0).abs() < 1e-6 * (1.0 + u0.abs()), "latch: {v} vs {u0}");
+        } else {
+            // Infeasible (the opposite sign): the nearest feasible output.
+            assert!((0.0..0.1).contains(&v), "nearest for {u0}: {v}");
+        }
+    }
+    // Infeasible because the widths cannot go below the final ones (|s_0| =
+    // 0.2 against eps = 2: |xi_0| <= 0.1): the nearest, -k_u Gamma(-0.1).
+    let b = builder::<f64, 2>(4.0).initial_output(Some(2.5));
+    let v = Controller::new(b.build().unwrap()).step(-0.1).unwrap();
+    assert!((v - 8.0 * 0.1_f64.atanh()).abs() < 1e-6, "{v}");
+}
+
+#[test]
+fn bumpless_start_in_f32() {
+    let b = builder::<f32, 3>(4.0).integral(true).initial_output(Some(1.25));
+    let v = Controller::new(b.build().unwrap()).step(0.05).unwrap();
+    assert!((v - 1.25).abs() < 1e-3, "{v}");
+}
+
+#[test]
+fn step_output_is_step_of_y_minus_y_d() {
+    let cfg = builder::<f64, 3>(4.0).integral(true).build().unwrap();
+    let (mut a, mut b) = (Controller::new(cfg), Controller::new(cfg));
+    for k in 0..200 {
+        let (y, y_d) = ((k as f64 * 0.03).cos(), 0.2);
+        assert_eq!(a.step_output(y, y_d, None).unwrap(), b.step(y - y_d).unwrap());
+    }
+    assert!(a.step_output(f64::NAN, 0.0, None).is_err());
+    assert!(a.step_output(f64::MAX, -f64::MAX, None).is_err());
+    assert_eq!(a.snapshot(), b.snapshot());
+}
+
+#[test]
+fn snapshot_carries_the_integral() {
+    let cfg = builder::<f64, 3>(4.0).integral(true).build().unwrap();
+    let mut a = Controller::new(cfg);
+    for k in 0..300 {
+        a.step(0.3 * (k as f64 * 0.02).sin() - 0.1).unwrap();
+    }
+    assert!(a.diagnostics().integral.unwrap() != 0.0);
+    let mut b = Controller::new(cfg);
+    b.restore(&a.snapshot()).unwrap();
+    for k in 0..300 {
+        let e = (k as f64 * 0.05).cos() * 0.2;
+        assert_eq!(a.step(e).unwrap().to_bits(), b.step(e).unwrap().to_bits());
+    }
+}
+
+#[test]
+fn the_health_count_sees_expansions_with_headroom() {
+    // k_u far too small for the load (2 / ln 3 is needed): the bounds expand
+    // for good although the actuator (limits +-100) has room.
+    let b = builder::<f64, 2>(0.3)
+        .output_limits(Some((-100.0, 100.0)))
+        .rho_e(Some(0.1));
+    let (_, c) = regulate(b, 2.0, 3.0);
+    assert!(c.unsaturated_expansions() > 100, "{}", c.unsaturated_expansions());
+    assert_eq!(c.unsaturated_expansions(), c.diagnostics().unsaturated_expansions);
+    // Without the output limits and without `applied`, nothing is known.
+    let mut c = Controller::new(builder::<f64, 2>(0.3).rho_e(Some(0.1)).build().unwrap());
+    let mut p = Plant {
+        x: 0.5,
+        v: 0.0,
+        d: 2.0,
+    };
+    for _ in 0..3000 {
+        let u = c.step(p.x).unwrap();
+        p.advance(u);
+    }
+    assert_eq!(c.unsaturated_expansions(), 0);
+}
+
+#[test]
+fn an_unstable_discretized_differentiator_is_a_config_error() {
+    let euler = |dt: f64| {
+        Config::<f64, 2>::builder(
+            dt,
+            &[(Feedback::Linear { k: 1.0 }, None)],
+            Constraint::Lateral { eps: 0.1 },
+            5.0,
+        )
+        .differentiator(Some(HighGain::new(0.01, [4.0, 4.0], Discretization::Euler)))
+        .build()
+    };
+    // Euler: eigenvalue 1 - 2 dt / mu (double): unstable from dt = mu on.
+    assert!(euler(1e-3).is_ok());
+    let e = euler(0.05).unwrap_err();
+    assert_eq!(e.parameter, "dt");
+    assert!(e.rule.contains("spectral radius"), "{e}");
+    assert!(euler(0.01).is_err(), "marginal (|lambda| = 1) is rejected");
+    // Exact and Tustin are stable at any dt.
+    for d in [Discretization::Exact, Discretization::Tustin] {
+        let cfg = Config::<f64, 2>::builder(
+            1.0,
+            &[(Feedback::Linear { k: 1.0 }, None)],
+            Constraint::Lateral { eps: 0.1 },
+            5.0,
+        )
+        .differentiator(Some(HighGain::new(0.01, [4.0, 4.0], d)))
+        .build();
+        assert!(cfg.is_ok(), "{d:?}");
+    }
+}
+
+#[test]
+fn the_papers_designs_have_no_lint_findings() {
+    for ex in [Example::FiniteTime, Example::VariableExponent, Example::Rfc] {
+        for variant in [Variant::Paper, Variant::Code] {
+            let found: Vec<String> = match design::<f64>(ex, variant, DT).unwrap() {
+                Design::Order2(c) => c.lint().iter().map(|f| f.to_string()).collect(),
+                Design::Order3(c) => c.lint().iter().map(|f| f.to_string()).collect(),
+            };
+            assert!(found.is_empty(), "{ex:?} {variant:?}: {found:?}");
+        }
+    }
+}
+
+#[test]
+fn lint_names_the_parameter_rule_and_suggestion() {
+    let linear = [(Feedback::Linear { k: 2.0 }, None); 3];
+    let cfg = Config::<f64, 4>::builder(5e-3, &linear, Constraint::Longitudinal { eps: 1.0 }, 5.0)
+        .differentiator(Some(HighGain::auto()))
+        .rho_e(Some(0.5))
+        .build()
+        .unwrap();
+    let f = cfg.lint();
+    let lints: Vec<Lint> = f.iter().map(|f| f.lint).collect();
+    assert_eq!(lints, [Lint::CoarseSampling, Lint::WideMargin, Lint::Peaking]);
+    for finding in f.iter() {
+        let text = finding.to_string();
+        assert!(
+            text.starts_with(finding.parameter) && text.contains("rule: ") && text.contains("suggested"),
+            "{text}"
+        );
+    }
+    // A finite-time law on the last stage of a fast longitudinal loop chatters.
+    let ft = [
+        (Feedback::Linear { k: 1.0 }, None),
+        (Feedback::FiniteTime { k: 20.0, p: 0.5 }, None),
+    ];
+    let cfg = Config::<f64, 3>::builder(1e-3, &ft, Constraint::Longitudinal { eps: 0.01 }, 5.0)
+        .differentiator(Some(HighGain::paper()))
+        .build()
+        .unwrap();
+    let chatter = cfg.lint();
+    let c = chatter.get(Lint::Chatter).unwrap();
+    assert_eq!((c.parameter, c.stage), ("k", Some(1)));
+    // ... and not with a Nonsingular skew.
+    let nsmd = Skew::nonsingular(0.1, 0.1, 0.2);
+    let ft = [
+        (Feedback::Linear { k: 1.0 }, None),
+        (Feedback::FiniteTime { k: 20.0, p: 0.5 }, Some(nsmd)),
+    ];
+    if let Ok(cfg) = Config::<f64, 3>::builder(1e-3, &ft, Constraint::Longitudinal { eps: 0.01 }, 5.0)
+        .differentiator(Some(HighGain::paper()))
+        .build()
+    {
+        assert!(cfg.lint().get(Lint::Chatter).is_none());
+    }
+    // The exact ZOH at order >= 4 aliases.
+    let cfg = Config::<f64, 4>::builder(1e-3, &linear, Constraint::Longitudinal { eps: 1.0 }, 5.0)
+        .differentiator(Some(HighGain::new(
+            0.01,
+            [8.0, 24.0, 32.0, 16.0],
+            Discretization::Exact,
+        )))
+        .estimate_limits(Some([10.0, 1e2, 1e3, 1e4]))
+        .build()
+        .unwrap();
+    let lints: Vec<Lint> = cfg.lint().iter().map(|f| f.lint).collect();
+    assert_eq!(lints, [Lint::Aliasing]);
+}
+
+#[test]
+fn integral_and_limits_in_f32() {
+    let b = builder::<f32, 3>(4.0)
+        .integral(true)
+        .output_limits(Some((-1.5, 1.5)))
+        .rate_limit(Some(100.0));
+    let mut c = Controller::new(b.build().unwrap());
+    let (mut x, mut v) = (0.5_f32, 0.0_f32);
+    let mut prev = None;
+    for _ in 0..20000 {
+        let u = c.step_output(x, 0.0, prev).unwrap();
+        assert!((-1.5..=1.5).contains(&u) && u.is_finite());
+        v += 1e-3 * (u - 1.0);
+        x += 1e-3 * v;
+        prev = Some(u);
+    }
+    let d = c.diagnostics();
+    assert!(d.integral.is_some_and(f32::is_finite));
+    assert!(x.abs() < 1e-2, "x = {x}");
+}
