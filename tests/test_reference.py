@@ -466,8 +466,9 @@ def test_default_rho_e_is_auto_like_the_core():
 
 
 def test_outlier_recovery_matches_core():
-    """A valid but huge sample overflows the law for a few steps; both keep advancing
-    the estimate and the clock, fail at the same samples and then agree again."""
+    """A valid but huge sample cannot be used; both consume it (the recovery rule:
+    the clock advances, the estimate restarts), fail at the same samples and then
+    agree again."""
     ctrl, ref = pair(cfg(2, feedback=L.FixedTime(1.0, 0.5, 0.5, 2.0), eps=0.5, k_u=2.0))
     e = list(synthetic_error(n=3000))
     e[100] = 1e155  # its square overflows

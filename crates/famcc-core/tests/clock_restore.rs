@@ -127,9 +127,8 @@ fn restore_checks_every_field() {
         ("k", 1.5),
         ("k", 2f64.powi(60)),
         ("rho0_x", 0.01),
-        ("rho0_x", 1e30),
+        ("rho0_x", 1e40), // inf as an f32
         ("last_v", f64::NAN),
-        ("last_v", 0.1), // not an f32
         ("period", 0.0),
         ("config", 12345.0),
     ];
@@ -141,7 +140,7 @@ fn restore_checks_every_field() {
         assert!(r.is_err(), "{name} = {value} accepted");
         assert_eq!(c, before);
     }
-    for z in [f64::NAN, 1e20, 0.1] {
+    for z in [f64::NAN, 1e20, 1e40] {
         let mut v = flat;
         v[famcc_core::SNAPSHOT_FIELDS.len()] = z;
         assert!(

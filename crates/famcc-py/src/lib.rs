@@ -33,6 +33,7 @@ mod functions;
 mod kwargs;
 mod laws;
 mod names;
+mod number;
 mod orders;
 mod paper;
 mod spec;

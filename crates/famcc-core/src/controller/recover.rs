@@ -34,11 +34,11 @@ pub(super) fn in_range<T: Real, const N: usize>(z: &[T; N]) -> bool {
     z.iter().all(|v| v.abs() <= r)
 }
 
-/// True when a latched envelope width is within range: at most `R / 2`, so
-/// that the oblique constraint's `sqrt(x_U^2 + y_U^2)` stays finite.
+/// True when a latched envelope width can be used: finite (the oblique
+/// constraint's `sqrt(x_U^2 + y_U^2)` is scaled when the squares overflow).
 #[inline(always)]
 pub(super) fn width_in_range<T: Real>(w: T) -> bool {
-    w <= T::estimate_range() * T::from_f64(0.5)
+    w.is_finite()
 }
 
 /// Why a step could not use its sample.

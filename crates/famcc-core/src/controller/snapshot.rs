@@ -83,15 +83,15 @@ fn count(x: f64, name: &'static str) -> Result<u64, ConfigError> {
     }
 }
 
-/// `x` as a `T` when it is one exactly (a value the controller can hold).
-fn exact<T: Real>(x: f64, name: &'static str) -> Result<T, ConfigError> {
+/// `x` as a `T` (rounded to nearest), when it is finite as a `T`.
+fn value<T: Real>(x: f64, name: &'static str) -> Result<T, ConfigError> {
     let v = T::from_f64(x);
-    if v.to_f64_lossless() == x && x.is_finite() {
+    if v.is_finite() {
         Ok(v)
     } else {
         Err(ConfigError::new(
             name,
-            "must be a finite value of the controller's float type",
+            "must be finite (in the controller's float type)",
         ))
     }
 }
@@ -142,7 +142,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
 
     /// Reads the flat layout of [`Snapshot::to_array`]. Rejects a wrong
     /// length, a `started` other than 0 or 1, counts that are not exact
-    /// non-negative integers and values that are not finite values of `T`;
+    /// non-negative integers and values that are not finite in `T`;
     /// the rest is checked by [`crate::Controller::restore`].
     pub fn from_array(v: &[f64]) -> Result<Self, ConfigError> {
         let ([started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period, config], estimate) =
@@ -155,18 +155,18 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
         rule(t_base.is_finite(), "state.t_base", "must be finite and >= 0")?;
         let mut zhat = [T::zero(); N];
         for (z, x) in zhat.iter_mut().zip(estimate.iter()) {
-            *z = exact(*x, "state.z_hat")?;
+            *z = value(*x, "state.z_hat")?;
         }
         Ok(Self {
             started: *started == 1.0,
             t_base: *t_base,
             k: count(*k, "state.k")?,
             zhat,
-            rho0_x: exact(*rho0_x, "state.rho0_x")?,
-            rho0_y: exact(*rho0_y, "state.rho0_y")?,
+            rho0_x: value(*rho0_x, "state.rho0_x")?,
+            rho0_y: value(*rho0_y, "state.rho0_y")?,
             clamp_count: count(*clamp_count, "state.clamp_count")?,
-            last_v: exact(*last_v, "state.last_v")?,
-            period: exact(*period, "state.period")?,
+            last_v: value(*last_v, "state.last_v")?,
+            period: value(*period, "state.period")?,
             config: count(*config, "state.config")?,
         })
     }
@@ -215,7 +215,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
         rule(
             widths && width_in_range(self.rho0_x) && width_in_range(self.rho0_y),
             "state.rho0_x",
-            "and state.rho0_y must be >= eps and within half the estimate range",
+            "and state.rho0_y must be finite and >= eps",
         )?;
         let within = c
             .output_limits()
