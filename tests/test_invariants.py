@@ -153,6 +153,13 @@ def _tight_case(order: int, name: str, limits: tuple[float, float]):
     return make_plant(stages, [1.5] + [-1.0] * (order - 1)), Sine(1.0, 2.0), limits, name
 
 
+#: Random plants of the paper's class may keep the bounds expanded with headroom
+#: (issue 13: rho_e = 0.01 loses accuracy on some): the health warning is expected
+#: there and is not what these invariants test.
+_HEALTH = pytest.mark.filterwarnings("ignore:k_u too small:famcc.DesignWarning")
+
+
+@_HEALTH
 @INVARIANT_SETTINGS
 @given(closed_loop(2))
 @example(_tight_case(2, "finite-time", (-0.5, 0.8)))
@@ -162,6 +169,7 @@ def test_xi_stays_inside_order_2(case):
     assert_invariants(run(plant, ref, limits, name, t_end=3.0), limits)
 
 
+@_HEALTH
 @INVARIANT_SETTINGS
 @given(closed_loop(3))
 @example(_tight_case(3, "rfc", (-0.6, 0.6)))
