@@ -10,7 +10,8 @@
 #     and compares them bit for bit with the host
 #  4. counts instructions per controller step (QEMU plugin, -icount) and the
 #     controller's flash (.text + .rodata) against the targets
-#  5. builds and runs the C example on the host and, linked against the
+#  5. runs the C ABI checks (crates/famcc-ffi/tests/c) and builds and runs
+#     the C example on the host and, linked against the
 #     thumbv7em staticlib, in QEMU
 #
 # Exit status: non-zero on any functional failure (a build, a check, a
@@ -185,6 +186,35 @@ if [ -x "$FW/famcc-fw" ] && [ -f "$OUT/tools/icount.so" ]; then
     done
 fi
 
+# ---------------------------------------------------------------- worst case under adversarial input
+phase "worst step over adversarial input (issue 15: within 20x the median step)"
+WORST_RATIO=20
+ADVERSARIAL=()
+if [ -x "$FW/famcc-fw" ]; then
+    for o in 2 3; do
+        timeout 300 "${QEMU[@]}" -icount shift=0 \
+            -semihosting-config "enable=on,target=native,chardev=con,arg=famcc-fw,arg=adversarial$o" \
+            -kernel "$FW/famcc-fw" 2>/dev/null | grep "^adversarial" >"$LOG/adversarial-o$o.txt" || true
+        [ -s "$LOG/adversarial-o$o.txt" ] || fail "adversarial order $o (no output)"
+        while read -r _ ord name rest; do
+            maxt=$(sed -n 's/.*max_ticks=\([0-9]*\).*/\1/p' <<<"$rest")
+            medt=$(sed -n 's/.*median_ticks=\([0-9]*\).*/\1/p' <<<"$rest")
+            if [ -z "$maxt" ] || [ -z "$medt" ] || [ "$medt" -eq 0 ]; then
+                fail "adversarial $ord $name: $rest"
+                continue
+            fi
+            # SysTick under -icount shift=0: 40 instructions per tick (+-1 tick).
+            line=$(awk -v m="$maxt" -v d="$medt" -v o="$ord" -v n="$name" -v r=$WORST_RATIO 'BEGIN {
+                printf "%s %-11s worst %6d instructions, median %6d (+-40): %.1fx (limit %dx)", o, n, 40 * m, 40 * d, m / d, r }')
+            echo "$line"
+            ADVERSARIAL+=("$line")
+            if [ "$maxt" -gt $((WORST_RATIO * medt)) ]; then
+                fail "worst step of $ord $name over $WORST_RATIO x the median"
+            fi
+        done <"$LOG/adversarial-o$o.txt"
+    done
+fi
+
 # ---------------------------------------------------------------- flash
 phase "controller flash (.text + .rodata, thumbv7em, opt-level 3, LTO)"
 textsz() { arm-none-eabi-size -B "$1" | awk 'NR == 2 { print $1 }'; }
@@ -229,6 +259,15 @@ else
     cat "$LOG/c-host.log"
     fail "C example (host) does not build"
 fi
+# The storage checks from C: NULL, misaligned, undersized storage, the wrong type.
+if gcc -std=c11 -O2 -Wall -Wextra -Werror -pedantic -I"$ROOT/crates/famcc-ffi/include" \
+    "$ROOT/crates/famcc-ffi/tests/c/abi_checks.c" "$OUT/release/libfamcc_ffi.a" -lm \
+    -o "$OUT/famcc-c-abi-checks" 2>"$LOG/c-abi-checks.log"; then
+    "$OUT/famcc-c-abi-checks" || fail "C ABI checks (crates/famcc-ffi/tests/c/abi_checks.c)"
+else
+    cat "$LOG/c-abi-checks.log"
+    fail "C ABI checks do not build"
+fi
 ARMCC=(arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -std=c11 -O2
        -Wall -Wextra -Werror -ffunction-sections -fdata-sections)
 if "${ARMCC[@]}" -I"$ROOT/crates/famcc-ffi/include" --specs=rdimon.specs \
@@ -267,6 +306,10 @@ target "controller flash, order 2 (new + step), bytes" "${TEXT[2]:-}" $TARGET_TE
 target "controller flash, order 3 (new + step), bytes" "${TEXT[3]:-}" $TARGET_TEXT
 target "step-only flash, order 2, bytes" "${TEXT_STEP[2]:-}" $TARGET_TEXT
 target "step-only flash, order 3, bytes" "${TEXT_STEP[3]:-}" $TARGET_TEXT
+if ((${#ADVERSARIAL[@]})); then
+    echo "  worst step over adversarial input (checked: <= ${WORST_RATIO}x the median):"
+    printf '    %s\n' "${ADVERSARIAL[@]}"
+fi
 T_END=$(date +%s)
 echo "time: packages $((T_PKGS - T_START)) s, builds $((T_BUILD - T_PKGS)) s, total $((T_END - T_START)) s (logs in $LOG)"
 if ((${#WARNINGS[@]})); then

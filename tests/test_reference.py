@@ -45,6 +45,9 @@ import numpy as np
 import pytest
 from oracle.reference import CLAMP_LIMIT, ReferenceController, discretize_hgd
 
+#: Index of z_hat[0] in ``Controller.state()`` (after the named fields).
+ZHAT = len(famcc._core.STATE_FIELDS)
+
 # This module runs risky configurations on purpose (coarse sampling, dt ~ mu) to
 # compare the core with the oracle there: their DesignWarnings are expected.
 pytestmark = pytest.mark.filterwarnings("ignore::famcc.DesignWarning")
@@ -79,14 +82,14 @@ def core_discretization(ctrl: famcc.Controller):
     phi = [[0.0] * n for _ in range(n)]
     for j in range(n):
         s = base.copy()
-        s[7:] = 0.0
-        s[7 + j] = 1.0
+        s[ZHAT:] = 0.0
+        s[ZHAT + j] = 1.0
         c.set_state(s)
         c.step(0.0)  # Phi e_j + Gamma * 0
         for i, x in enumerate(c.estimate):
             phi[i][j] = float(x)
     s = base.copy()
-    s[7:] = 0.0
+    s[ZHAT:] = 0.0
     c.set_state(s)
     c.step(1.0)  # Phi 0 + Gamma * 1
     return tuple(map(tuple, phi)), tuple(float(x) for x in c.estimate)
@@ -463,8 +466,9 @@ def test_default_rho_e_is_auto_like_the_core():
 
 
 def test_outlier_recovery_matches_core():
-    """A valid but huge sample overflows the law for a few steps; both keep advancing
-    the estimate and the clock, fail at the same samples and then agree again."""
+    """A valid but huge sample cannot be used; both consume it (the recovery rule:
+    the clock advances, the estimate restarts), fail at the same samples and then
+    agree again."""
     ctrl, ref = pair(cfg(2, feedback=L.FixedTime(1.0, 0.5, 0.5, 2.0), eps=0.5, k_u=2.0))
     e = list(synthetic_error(n=3000))
     e[100] = 1e155  # its square overflows

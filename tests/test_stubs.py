@@ -85,6 +85,7 @@ _TYPES = {
     "_F64Array": (np.ndarray,),
     "tuple[float, float]": (tuple,),
     "tuple[float, ...]": (tuple,),
+    "tuple[int, ...]": (tuple,),
     "tuple[float, ...] | None": (tuple, type(None)),
     "float | None": (float, type(None)),
     "Diagnostics": (_core.Diagnostics,),

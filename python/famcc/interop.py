@@ -62,7 +62,7 @@ def state_labels(controller: Controller, prefix: str = "") -> list[str]:
     >>> import famcc
     >>> c = famcc.Controller(2, 1e-3, famcc.Linear(1.0), eps=0.1, k_u=1.0)
     >>> state_labels(c)[-3:]
-    ['last_v', 'z_hat[0]', 'z_hat[1]']
+    ['config', 'z_hat[0]', 'z_hat[1]']
     """
     names = list(_STATE_HEAD) + [f"z_hat[{i}]" for i in range(controller.order)]
     return [prefix + s for s in names]
@@ -101,7 +101,7 @@ def to_nlsys(
     Returns
     -------
     control.NonlinearIOSystem
-        Sampling period ``dt = controller.dt``, ``7 + order`` states (the
+        Sampling period ``dt = controller.dt``, ``len(STATE_FIELDS) + order`` states (the
         vector of :meth:`famcc.Controller.state`, labelled by
         :func:`state_labels`), one input, one output. The update and output
         functions are pure functions of ``(t, x, u, params)``: each one copies

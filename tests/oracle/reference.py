@@ -30,8 +30,10 @@ Discrete-time semantics (docs/design.md §3.2), in the order of ``step(e_k)``:
    zero-order hold, ``Phi``/``Gamma`` computed at construction).
 
 A rejected step (non-finite ``e`` or ``applied``, overflow) raises ``ValueError``
-and changes nothing, except an overflow of the law after the first step: the
-estimate and the clock then still advance (outlier recovery, as in the core).
+and changes nothing, except an overflow after the first step (the recovery rule
+of design.md §3.7): the clock advances and the estimate restarts, from this
+sample when the law overflowed, from a zero error when the update would leave
+the estimate's range ``|z| <= 2^512``.
 ``rho_e="auto"`` (the default) is ``min(0.01, eps/10)`` with ``eps`` the smallest
 final half-width.
 
@@ -78,6 +80,8 @@ __all__ = [
 
 #: The largest float below 1 (docs/design.md §3.6: ``xi`` is clamped to the largest
 #: floating-point number below 1; both Gamma maps are finite there).
+#: The estimate's range (design.md §3.7): the square root of the largest f64.
+ESTIMATE_RANGE = 2.0**512
 CLAMP_LIMIT = 1.0 - 2.0**-53
 
 _INF = math.inf
@@ -712,8 +716,9 @@ class ReferenceController:
         return list(self._zhat)
 
     def state(self) -> list:
-        """``[started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, zhat...]``
-        (the layout of ``famcc.Controller.state()``)."""
+        """``[started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period,
+        config, zhat...]`` (the layout of ``famcc.Controller.state()``; the
+        compiled core's configuration fingerprint is not known here: 0)."""
         return [
             1.0 if self._started else 0.0,
             self._t_base,
@@ -722,20 +727,22 @@ class ReferenceController:
             self._rho0_y,
             float(self._clamps),
             self._last_v,
+            self.dt,
+            0.0,
             *self._zhat,
         ]
 
     def set_state(self, v: Sequence[float]) -> None:
         """Continues from a vector returned by ``state()`` (either implementation's)."""
         v = [float(x) for x in v]
-        if len(v) != 7 + self.order:
-            raise ValueError(f"state must have {7 + self.order} entries")
+        if len(v) != 9 + self.order:
+            raise ValueError(f"state must have {9 + self.order} entries")
         self.reset()
         self._started = v[0] != 0.0
         self._t_base, self._k = v[1], int(v[2])
         self._rho0_x, self._rho0_y = v[3], v[4]
         self._clamps, self._last_v = int(v[5]), v[6]
-        self._zhat = v[7:]
+        self._zhat = v[9:]
 
     @property
     def diagnostics(self) -> ReferenceDiagnostics:
@@ -895,7 +902,7 @@ class ReferenceController:
             nxt = self._advance(zhat, e)
         if self.limits is not None:
             zhat = [max(-lim, min(lim, z)) for z, lim in zip(zhat, self.limits)]
-        return self._finish(zhat, nxt, applied)
+        return self._finish(zhat, nxt, applied, [e, *self.initial_derivatives], e)
 
     def step_state(self, z: Sequence[float], applied: float | None = None) -> float:
         """One state-feedback step with the measured error vector ``z = (z1..zn)``."""
@@ -906,14 +913,28 @@ class ReferenceController:
             nxt = z
         else:
             nxt = self._advance(self._zhat if self._started else z, z[0])
-        return self._finish(z, nxt, applied)
+        return self._finish(z, nxt, applied, z, z[0])
 
-    def _finish(self, z: list, nxt: list, applied: float | None) -> float:
+    def _restart(self, seed: list, e: float, law_failed: bool) -> None:
+        """The recovery rule: the estimate restarts from ``seed`` (the first
+        step's estimate for this sample) when the law failed, else (or when that
+        is out of range) from a zero error."""
+        zero = [0.0, *self.initial_derivatives]
+        for s, x in ([(seed, e)] if law_failed else []) + [(zero, 0.0)]:
+            nxt = s if self.phi is None else self._advance(s, x)
+            if all(abs(v) <= ESTIMATE_RANGE for v in nxt):
+                self._zhat = nxt
+                break
+        self._k += 1
+
+    def _finish(self, z: list, nxt: list, applied: float | None, seed: list, e: float) -> float:
         if applied is not None:
             applied = float(applied)
             if not math.isfinite(applied):
                 raise ValueError(f"applied must be finite (got {applied})")
-        if not all(math.isfinite(x) for x in nxt):
+        if self.phi is not None and not all(abs(x) <= ESTIMATE_RANGE for x in nxt):
+            if self._started:
+                self._restart(seed, e, law_failed=False)
             raise ValueError("the differentiator's estimate overflowed")
         t = self._t_base + float(self._k) * self.dt
         latch = not self._started
@@ -923,11 +944,9 @@ class ReferenceController:
         v = d["v"]
         if not (math.isfinite(v) and math.isfinite(d["xi"])):
             if self._started:
-                # a valid sample on which the law overflowed (an outlier drove the
-                # estimate out of range): the estimate and the clock move on, so the
-                # controller recovers as the estimate decays (as the core does)
-                self._zhat = nxt
-                self._k += 1
+                # a valid sample on which the law overflowed: consumed, the
+                # estimate restarts from it (the recovery rule)
+                self._restart(seed, e, law_failed=True)
             raise ValueError("an internal value overflowed")
         if applied is not None:
             d["saturation_gap"] = self._last_v - applied

@@ -83,11 +83,19 @@ impl Latch {
     /// assert_eq!(Latch::Paper.rho0(0.01_f64, 2.0, 0.1), 0.2);
     /// assert_eq!(Latch::Authors.rho0(0.01_f64, 2.0, 0.1), 0.1);
     /// ```
+    /// A width that would overflow is the largest float instead (a state
+    /// at the edge of the range latches the widest envelope, docs/design.md
+    /// §3.7); NaN stays NaN.
     #[inline]
     pub fn rho0<T: Real>(self, s0: T, k0: T, eps: T) -> T {
-        match self {
+        let w = match self {
             Latch::Paper => k0 * s0.abs().max(eps),
             Latch::Authors => (k0 * s0.abs()).max(eps),
+        };
+        if w > T::max_value() {
+            T::max_value()
+        } else {
+            w
         }
     }
 }

@@ -44,12 +44,27 @@ impl fmt::Display for ConfigError {
 
 impl core::error::Error for ConfigError {}
 
-/// Checks `x > 0` (and finite).
+/// Checks `x > 0` (and finite), and that it is a scale the controller can
+/// compute with: within `[1 / S, S]`, `S` = [`crate::Real::scale_limit`]
+/// (docs/design.md §3.9).
 pub(crate) fn positive<T: crate::Real>(x: T, name: &'static str) -> Result<(), ConfigError> {
-    if x.is_finite() && x > T::zero() {
+    if !(x.is_finite() && x > T::zero()) {
+        return Err(ConfigError::new(name, "must be finite and > 0"));
+    }
+    scale(x, name)
+}
+
+/// Checks `1 / S <= |x| <= S` for a nonzero scale parameter (docs/design.md §3.9).
+pub(crate) fn scale<T: crate::Real>(x: T, name: &'static str) -> Result<(), ConfigError> {
+    let s = T::scale_limit();
+    if x.abs() <= s && x.abs() >= T::one() / s {
         Ok(())
     } else {
-        Err(ConfigError::new(name, "must be finite and > 0"))
+        Err(ConfigError::new(
+            name,
+            "must be within [2^-256, 2^256] in f64 and [2^-32, 2^32] (2.3e-10 to 4.3e9) in f32, \
+             so that the law stays far from overflow (the paper's values are near 1)",
+        ))
     }
 }
 
@@ -60,7 +75,8 @@ pub enum StepError {
     NonFiniteInput,
     /// The `applied` input was NaN or infinite.
     NonFiniteApplied,
-    /// A one-off sample period was not finite and > 0.
+    /// A one-off sample period was not finite and > 0, or outside the scale
+    /// range of the configuration (docs/design.md §3.9).
     InvalidDt,
     /// `step(e)` at order >= 2 needs a differentiator; without one use
     /// `step_state` with the measured error vector.

@@ -54,6 +54,14 @@ pub trait Real:
     /// `ln` of the smallest positive normal number: `exp(x)` below this is
     /// subnormal or zero.
     fn ln_min_positive() -> Self;
+    /// The estimate's range `2^(MAX_EXP / 2)` (`2^512` in `f64`, `2^64` in
+    /// `f32`): the square root of the largest float, so that a product of
+    /// two values in range stays finite (docs/design.md §3.7).
+    fn estimate_range() -> Self;
+    /// The largest scale parameter a configuration accepts, `2^(MAX_EXP /
+    /// 4)` (`2^256` in `f64`, `2^32` in `f32`; its inverse is the smallest),
+    /// docs/design.md §3.9.
+    fn scale_limit() -> Self;
 }
 
 impl Real for f64 {
@@ -72,6 +80,14 @@ impl Real for f64 {
     #[inline(always)]
     fn ln_min_positive() -> Self {
         -708.396_418_532_264_1
+    }
+    #[inline(always)]
+    fn estimate_range() -> Self {
+        1.340_780_792_994_259_7e154
+    }
+    #[inline(always)]
+    fn scale_limit() -> Self {
+        1.157_920_892_373_162e77
     }
 }
 
@@ -102,5 +118,13 @@ impl Real for f32 {
     #[inline(always)]
     fn ln_min_positive() -> Self {
         -87.336_55
+    }
+    #[inline(always)]
+    fn estimate_range() -> Self {
+        18_446_744_073_709_551_616.0
+    }
+    #[inline(always)]
+    fn scale_limit() -> Self {
+        4_294_967_296.0
     }
 }

@@ -72,7 +72,7 @@ pub mod transition;
 
 pub use config::{Config, ConfigBuilder};
 pub use constraint::Constraint;
-pub use controller::{Controller, Diagnostics, Snapshot, SNAPSHOT_FIELDS};
+pub use controller::{Controller, Diagnostics, Snapshot, PROBE_ERRORS, RECOVERY_SAMPLES, SNAPSHOT_FIELDS};
 pub use differentiator::{DiscreteHgd, Discretization, HighGain};
 pub use envelope::{Envelope, Latch};
 pub use error::{ConfigError, StepError};

@@ -449,9 +449,10 @@ fn bad_mu_and_dt_are_rejected_with_their_names() {
     for dt in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
         assert_eq!(hg.discretize(dt).unwrap_err().parameter, "dt");
     }
-    // dt / mu overflows
+    // dt / mu would overflow: mu (and dt) are outside the scale range
+    // [2^-256, 2^256] (docs/design.md §3.9), and mu is checked first
     let hg = HighGain::new(1e-300, [1.0], Discretization::Exact);
-    assert_eq!(hg.discretize(1e100).unwrap_err().parameter, "dt");
+    assert_eq!(hg.discretize(1e100).unwrap_err().parameter, "mu");
     // order 8 with mu = 1e-6 overflows f32 (H_8 = 1e48)
     let hg = HighGain::new(1e-6_f32, [1.0; 8], Discretization::Euler);
     let hg = HighGain {

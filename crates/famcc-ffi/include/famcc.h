@@ -284,9 +284,20 @@ enum FamccStatus
    */
   FAMCC_STATUS_NO_DIFFERENTIATOR = 8,
   /**
-   * An internal value overflowed (input far too large); state unchanged.
+   * The sample was finite but could not be used: the law overflowed on
+   * the estimate, or the sample would have taken the estimate out of
+   * range. After the first step the sample is consumed: the clock
+   * advances and the estimate restarts (famcc-core's recovery rule,
+   * docs/design.md §3.7), so the next moderate sample steps again; before
+   * the first step nothing changes. `*v` is not written: hold the previous
+   * output.
    */
   FAMCC_STATUS_OVERFLOW = 9,
+  /**
+   * `storage_size` of `*_init_sized` is smaller than the controller's
+   * storage type (`*_size()`); nothing was written.
+   */
+  FAMCC_STATUS_STORAGE_TOO_SMALL = 10,
 };
 #ifndef __cplusplus
 typedef uint32_t FamccStatus;
@@ -994,9 +1005,10 @@ typedef struct FamccDiagnostics_f32 {
    */
   uint32_t expanded;
   /**
-   * Time of the last step's sample, seconds.
+   * Time of the last step's sample, seconds (`double` for both float
+   * types: exact from an integer sample count, docs/design.md §3.10).
    */
-  float t;
+  double t;
   /**
    * The constraint variable used for the output (after clamping).
    */
@@ -1102,7 +1114,8 @@ typedef struct FamccDiagnostics_f64 {
    */
   uint32_t expanded;
   /**
-   * Time of the last step's sample, seconds.
+   * Time of the last step's sample, seconds (`double` for both float
+   * types: exact from an integer sample count, docs/design.md §3.10).
    */
   double t;
   /**
@@ -1268,9 +1281,21 @@ FamccStatus famcc_o2_f32_init(struct FamccO2F32 *storage,
                               struct FamccError *error);
 
 /**
+ * `famcc_o2_f32_init` for storage given as a buffer of `storage_size`
+ * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+ * smaller than `famcc_o2_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+ * not aligned to `famcc_o2_f32_align()`; nothing is written then.
+ */
+FamccStatus famcc_o2_f32_init_sized(struct FamccO2F32 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF32 *config,
+                                    struct FamccError *error);
+
+/**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
- * the control `v` to hold until the next sample. On error `*v` and the state
- * are unchanged.
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
  */
 FamccStatus famcc_o2_f32_step(struct FamccO2F32 *c, float e, float *v);
 
@@ -1306,6 +1331,17 @@ size_t famcc_o2_f64_align(void);
 FamccStatus famcc_o2_f64_init(struct FamccO2F64 *storage,
                               const FamccConfigF64 *config,
                               struct FamccError *error);
+
+/**
+ * `famcc_o2_f64_init` for storage given as a buffer of `storage_size`
+ * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+ * smaller than `famcc_o2_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+ * not aligned to `famcc_o2_f64_align()`; nothing is written then.
+ */
+FamccStatus famcc_o2_f64_init_sized(struct FamccO2F64 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF64 *config,
+                                    struct FamccError *error);
 
 /**
  * See `famcc_o2_f32_step`.
@@ -1345,6 +1381,17 @@ FamccStatus famcc_o3_f32_init(struct FamccO3F32 *storage,
                               struct FamccError *error);
 
 /**
+ * `famcc_o3_f32_init` for storage given as a buffer of `storage_size`
+ * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+ * smaller than `famcc_o3_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+ * not aligned to `famcc_o3_f32_align()`; nothing is written then.
+ */
+FamccStatus famcc_o3_f32_init_sized(struct FamccO3F32 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF32 *config,
+                                    struct FamccError *error);
+
+/**
  * See `famcc_o2_f32_step`.
  */
 FamccStatus famcc_o3_f32_step(struct FamccO3F32 *c, float e, float *v);
@@ -1380,6 +1427,17 @@ size_t famcc_o3_f64_align(void);
 FamccStatus famcc_o3_f64_init(struct FamccO3F64 *storage,
                               const FamccConfigF64 *config,
                               struct FamccError *error);
+
+/**
+ * `famcc_o3_f64_init` for storage given as a buffer of `storage_size`
+ * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+ * smaller than `famcc_o3_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+ * not aligned to `famcc_o3_f64_align()`; nothing is written then.
+ */
+FamccStatus famcc_o3_f64_init_sized(struct FamccO3F64 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF64 *config,
+                                    struct FamccError *error);
 
 /**
  * See `famcc_o2_f32_step`.

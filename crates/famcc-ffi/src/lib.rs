@@ -52,9 +52,10 @@ pub extern "C" fn famcc_status_str(status: u32) -> *const c_char {
         4 => b"invalid configuration\0",
         5 => b"input must be finite (got NaN or infinity); state unchanged\0",
         6 => b"applied input must be finite; state unchanged\0",
-        7 => b"dt must be finite and > 0\0",
+        7 => b"dt must be finite and > 0 (and within the scale range); state unchanged\0",
         8 => b"step needs a differentiator at order >= 2\0",
-        9 => b"input too large: an internal value overflowed; state unchanged\0",
+        9 => b"sample unusable (an internal value would overflow): consumed, the estimate restarts; hold the previous output\0",
+        10 => b"storage_size is smaller than the controller's storage type\0",
         _ => b"unknown status\0",
     };
     s.as_ptr().cast()
@@ -106,12 +107,27 @@ pub unsafe extern "C" fn famcc_o2_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 2>(storage, config, error, MAGIC_O2_F32)
+    init::<_, f32, 2>(storage, None, config, error, MAGIC_O2_F32)
+}
+
+/// `famcc_o2_f32_init` for storage given as a buffer of `storage_size`
+/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+/// smaller than `famcc_o2_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+/// not aligned to `famcc_o2_f32_align()`; nothing is written then.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f32_init_sized(
+    storage: *mut FamccO2F32,
+    storage_size: usize,
+    config: *const FamccConfigF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 2>(storage, Some(storage_size), config, error, MAGIC_O2_F32)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
-/// the control `v` to hold until the next sample. On error `*v` and the state
-/// are unchanged.
+/// the control `v` to hold until the next sample. On error `*v` is not
+/// written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+/// the first step (the sample is consumed; see that status).
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o2_f32_step(c: *mut FamccO2F32, e: f32, v: *mut f32) -> FamccStatus {
     step::<_, f32, 2>(c, MAGIC_O2_F32, e, None, v)
@@ -163,7 +179,21 @@ pub unsafe extern "C" fn famcc_o2_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 2>(storage, config, error, MAGIC_O2_F64)
+    init::<_, f64, 2>(storage, None, config, error, MAGIC_O2_F64)
+}
+
+/// `famcc_o2_f64_init` for storage given as a buffer of `storage_size`
+/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+/// smaller than `famcc_o2_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+/// not aligned to `famcc_o2_f64_align()`; nothing is written then.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f64_init_sized(
+    storage: *mut FamccO2F64,
+    storage_size: usize,
+    config: *const FamccConfigF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 2>(storage, Some(storage_size), config, error, MAGIC_O2_F64)
 }
 
 /// See `famcc_o2_f32_step`.
@@ -217,7 +247,21 @@ pub unsafe extern "C" fn famcc_o3_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 3>(storage, config, error, MAGIC_O3_F32)
+    init::<_, f32, 3>(storage, None, config, error, MAGIC_O3_F32)
+}
+
+/// `famcc_o3_f32_init` for storage given as a buffer of `storage_size`
+/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+/// smaller than `famcc_o3_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+/// not aligned to `famcc_o3_f32_align()`; nothing is written then.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f32_init_sized(
+    storage: *mut FamccO3F32,
+    storage_size: usize,
+    config: *const FamccConfigF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 3>(storage, Some(storage_size), config, error, MAGIC_O3_F32)
 }
 
 /// See `famcc_o2_f32_step`.
@@ -271,7 +315,21 @@ pub unsafe extern "C" fn famcc_o3_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 3>(storage, config, error, MAGIC_O3_F64)
+    init::<_, f64, 3>(storage, None, config, error, MAGIC_O3_F64)
+}
+
+/// `famcc_o3_f64_init` for storage given as a buffer of `storage_size`
+/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
+/// smaller than `famcc_o3_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
+/// not aligned to `famcc_o3_f64_align()`; nothing is written then.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f64_init_sized(
+    storage: *mut FamccO3F64,
+    storage_size: usize,
+    config: *const FamccConfigF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 3>(storage, Some(storage_size), config, error, MAGIC_O3_F64)
 }
 
 /// See `famcc_o2_f32_step`.

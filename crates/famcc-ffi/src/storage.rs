@@ -49,6 +49,7 @@ unsafe fn checked<S, T, const N: usize>(
         return Err(FamccStatus::Misaligned);
     }
     let s = storage.cast::<Slot<T, N>>();
+    // Another order or float type reads as not initialised (its tag differs).
     if ptr::read(ptr::addr_of!((*s).magic)) != tag {
         return Err(FamccStatus::NotInitialized);
     }
@@ -71,14 +72,19 @@ unsafe fn slot_ref<'a, S, T, const N: usize>(
     checked::<S, T, N>(storage, tag).map(|s| &*s)
 }
 
+/// Initialises `storage` (of `size` bytes when given, else a whole `S`).
 pub(crate) unsafe fn init<S, T: Real, const N: usize>(
     storage: *mut S,
+    size: Option<usize>,
     config: *const FamccConfig<T>,
     error: *mut FamccError,
     tag: u64,
 ) -> FamccStatus {
     if storage.is_null() || config.is_null() {
         return FamccStatus::NullPointer;
+    }
+    if size.is_some_and(|n| n < size_of::<S>()) {
+        return FamccStatus::StorageTooSmall;
     }
     if (storage as usize) % align_of::<S>() != 0 {
         return FamccStatus::Misaligned;

@@ -32,8 +32,17 @@ pub enum FamccStatus {
     InvalidDt = 7,
     /// `step` at order >= 2 needs a differentiator (`differentiator.enabled`).
     NoDifferentiator = 8,
-    /// An internal value overflowed (input far too large); state unchanged.
+    /// The sample was finite but could not be used: the law overflowed on
+    /// the estimate, or the sample would have taken the estimate out of
+    /// range. After the first step the sample is consumed: the clock
+    /// advances and the estimate restarts (famcc-core's recovery rule,
+    /// docs/design.md §3.7), so the next moderate sample steps again; before
+    /// the first step nothing changes. `*v` is not written: hold the previous
+    /// output.
     Overflow = 9,
+    /// `storage_size` of `*_init_sized` is smaller than the controller's
+    /// storage type (`*_size()`); nothing was written.
+    StorageTooSmall = 10,
 }
 
 /// Feedback law kinds (`FamccFeedback.kind`).
@@ -340,8 +349,9 @@ pub struct FamccDiagnostics<T> {
     pub order: u32,
     /// Nonzero when the flexible boundary was expanded.
     pub expanded: u32,
-    /// Time of the last step's sample, seconds.
-    pub t: T,
+    /// Time of the last step's sample, seconds (`double` for both float
+    /// types: exact from an integer sample count, docs/design.md §3.10).
+    pub t: f64,
     /// The constraint variable used for the output (after clamping).
     pub xi: T,
     /// The nominal constraint variable, before clamping.

@@ -4,6 +4,7 @@
 use crate::controller::PyController;
 use crate::dispatch::{with_bank, BankCores};
 use crate::errors::{ConfigError, StepError};
+use crate::number::{Int, Text};
 use crate::spec::Spec;
 use crate::state;
 use famcc_core::{Controller, Real};
@@ -24,14 +25,32 @@ pub struct ControllerBank {
     /// Overflowed steps in the last call of `step`.
     #[pyo3(get)]
     overflows: usize,
+    /// The lanes held by the last call of `step(e, on_nonfinite="hold")`
+    /// (their `e` was not finite), in order.
+    held: Vec<usize>,
+}
+
+/// What `step` does with non-finite entries of `e`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum OnNonFinite {
+    /// `StepError` before any controller moves.
+    Raise,
+    /// Those lanes keep their state and output; the others step.
+    Hold,
 }
 
 /// Steps one slice of controllers; returns how many steps overflowed. Those
 /// controllers consumed their sample (famcc-core's `StepError::Overflow`) and
-/// their output is the previous one, as a caller would hold it.
+/// their output is the previous one, as a caller would hold it. A lane whose
+/// `e` is not finite (only with `on_nonfinite="hold"`) is held: its step is
+/// refused by the core, so its state is unchanged, and it repeats its output.
 fn step_slice<T: Real, const N: usize>(v: &mut [Controller<T, N>], e: &[f64], out: &mut [f64]) -> usize {
     let mut failed = 0;
     for ((c, e), o) in v.iter_mut().zip(e).zip(out.iter_mut()) {
+        if !e.is_finite() {
+            *o = c.diagnostics().v.to_f64_lossless();
+            continue;
+        }
         match c.step(T::from_f64(*e)) {
             Ok(x) => *o = x.to_f64_lossless(),
             Err(_) => {
@@ -76,7 +95,12 @@ fn threads_for(n: usize) -> usize {
 
 impl ControllerBank {
     /// `step` on an error slice.
-    fn step_errors<'py>(&mut self, py: Python<'py>, e: &[f64]) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    fn step_errors<'py>(
+        &mut self,
+        py: Python<'py>,
+        e: &[f64],
+        on_nonfinite: OnNonFinite,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         if e.len() != self.n {
             return Err(StepError::new_err(format!(
                 "e must have length {} (one per controller), got {}",
@@ -84,12 +108,21 @@ impl ControllerBank {
                 e.len()
             )));
         }
-        if let Some(i) = e.iter().position(|x| !x.is_finite()) {
-            return Err(StepError::new_err(format!(
-                "e[{i}] = {} is not finite; no controller was stepped",
-                e[i]
-            )));
+        if on_nonfinite == OnNonFinite::Raise {
+            if let Some(i) = e.iter().position(|x| !x.is_finite()) {
+                return Err(StepError::new_err(format!(
+                    "e[{i}] = {} is not finite; no controller was stepped (on_nonfinite=\"hold\" holds \
+                     such lanes and steps the others)",
+                    e[i]
+                )));
+            }
         }
+        self.held = e
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| !x.is_finite())
+            .map(|(i, _)| i)
+            .collect();
         let mut out = vec![0.0; self.n];
         let cores = &mut self.cores;
         self.overflows = if self.n >= DETACH_MIN {
@@ -104,7 +137,8 @@ impl ControllerBank {
 #[pymethods]
 impl ControllerBank {
     #[new]
-    fn new(controller: &PyController, n: i64) -> PyResult<Self> {
+    fn new(controller: &PyController, n: Int) -> PyResult<Self> {
+        let n = n.0;
         let n = usize::try_from(n)
             .ok()
             .filter(|n| *n >= 1)
@@ -114,6 +148,7 @@ impl ControllerBank {
             spec: controller.spec.clone(),
             n,
             overflows: 0,
+            held: Vec::new(),
         })
     }
 
@@ -127,16 +162,37 @@ impl ControllerBank {
     /// before any controller moves. Large batches release the GIL and are
     /// split across threads. A controller whose law overflows on a valid
     /// sample consumes it and repeats its previous output (counted in
-    /// `overflows`).
+    /// `overflows`). `on_nonfinite="hold"`: a lane whose `e` is NaN or
+    /// infinite keeps its state and repeats its output, the others step, and
+    /// `held` lists the held lanes.
+    #[pyo3(signature = (e, on_nonfinite = Text(String::from("raise"))),
+        text_signature = "(self, /, e, on_nonfinite='raise')")]
     fn step<'py>(
         &mut self,
         py: Python<'py>,
         e: PyReadonlyArray1<'py, f64>,
+        on_nonfinite: Text,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let policy = match on_nonfinite.0.as_str() {
+            "raise" => OnNonFinite::Raise,
+            "hold" => OnNonFinite::Hold,
+            other => {
+                return Err(ConfigError::new_err(format!(
+                    "on_nonfinite must be \"raise\" or \"hold\", got {other:?}"
+                )))
+            }
+        };
         let e = e
             .as_slice()
             .map_err(|_| StepError::new_err("e must be a contiguous float64 array"))?;
-        self.step_errors(py, e)
+        self.step_errors(py, e, policy)
+    }
+
+    /// The lanes held by the last `step`, in order (empty unless
+    /// `on_nonfinite="hold"` met non-finite entries).
+    #[getter]
+    fn held<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
+        pyo3::types::PyTuple::new(py, &self.held)
     }
 
     /// Steps controller i with the error `e[i] = y[i] - y_d[i]` (output minus
@@ -161,7 +217,7 @@ impl ControllerBank {
             )));
         }
         let e: Vec<f64> = y.iter().zip(y_d).map(|(y, r)| y - r).collect();
-        self.step_errors(py, &e)
+        self.step_errors(py, &e, OnNonFinite::Raise)
     }
 
     /// The constraint variables xi~ of the last step (NumPy array).
@@ -200,15 +256,20 @@ impl ControllerBank {
         with_bank!(&mut self.cores, v => v.iter_mut().for_each(|c| c.reset()))
     }
 
-    /// A copy of controller i (as a `Controller`).
-    fn controller(&self, i: i64) -> PyResult<PyController> {
-        let i = usize::try_from(i).unwrap_or(usize::MAX);
-        if i >= self.n {
-            return Err(pyo3::exceptions::PyIndexError::new_err(format!(
-                "index {i} out of range for {} controllers",
-                self.n
-            )));
-        }
+    /// A copy of controller i (as a `Controller`); negative indices count
+    /// from the end, as Python's.
+    fn controller(&self, i: Int) -> PyResult<PyController> {
+        let given = i.0;
+        let n = i64::try_from(self.n).unwrap_or(i64::MAX);
+        let i = usize::try_from(if given < 0 { given.saturating_add(n) } else { given })
+            .ok()
+            .filter(|i| *i < self.n)
+            .ok_or_else(|| {
+                pyo3::exceptions::PyIndexError::new_err(format!(
+                    "index {given} out of range for {} controllers",
+                    self.n
+                ))
+            })?;
         let mut c = PyController::from_spec(self.spec.clone())?;
         let state: Vec<f64> = with_bank!(&self.cores, v => state::to_vec(&v[i]));
         c.set_state_vec(&state)?;

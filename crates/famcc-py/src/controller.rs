@@ -7,6 +7,7 @@ use crate::diagnostics::Diagnostics;
 use crate::dispatch::Core;
 use crate::errors::{config_err, step_err, ConfigError, StepError};
 use crate::names::{CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
+use crate::number::{Int, Num, Text};
 use crate::spec::{RhoE, Spec};
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use numpy::{PyArray1, PyReadonlyArray1};
@@ -101,57 +102,59 @@ impl PyController {
 #[pymethods]
 impl PyController {
     #[new]
-    #[pyo3(signature = (order, dt, feedback = None, *, skew = None, constraint = CONSTRAINT.default_name(), eps,
-        settle_time = DEFAULT_SETTLE_TIME, k0 = DEFAULT_K0, k_u, gamma = GAMMA.default_name(),
+    #[pyo3(signature = (order, dt, feedback = None, *, skew = None, constraint = text(CONSTRAINT.default_name()), eps,
+        settle_time = Num(DEFAULT_SETTLE_TIME), k0 = Num(DEFAULT_K0), k_u, gamma = text(GAMMA.default_name()),
         rho_e = Some(RhoArg::Name(String::from(AUTO))), differentiator = Some(DiffArg::Name(String::from(AUTO))),
-        latch = LATCH.default_name(), transition = TRANSITION.default_name(), initial_derivatives = None,
-        dtype = DTYPE.default_name(), integral = false, output_limits = None, rate_limit = None,
+        latch = text(LATCH.default_name()), transition = text(TRANSITION.default_name()), initial_derivatives = None,
+        dtype = text(DTYPE.default_name()), integral = false, output_limits = None, rate_limit = None,
         initial_output = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        order: i64,
-        dt: f64,
+        order: Int,
+        dt: Num,
         feedback: Option<&Bound<'_, PyAny>>,
         skew: Option<&Bound<'_, PyAny>>,
-        constraint: &str,
+        constraint: Text,
         eps: &Bound<'_, PyAny>,
-        settle_time: f64,
-        k0: f64,
-        k_u: f64,
-        gamma: &str,
+        settle_time: Num,
+        k0: Num,
+        k_u: Num,
+        gamma: Text,
         rho_e: Option<RhoArg<'_>>,
         differentiator: Option<DiffArg<'_>>,
-        latch: &str,
-        transition: &str,
-        initial_derivatives: Option<Vec<f64>>,
-        dtype: &str,
+        latch: Text,
+        transition: Text,
+        initial_derivatives: Option<Vec<Num>>,
+        dtype: Text,
         integral: bool,
-        output_limits: Option<(f64, f64)>,
-        rate_limit: Option<f64>,
-        initial_output: Option<f64>,
+        output_limits: Option<(Num, Num)>,
+        rate_limit: Option<Num>,
+        initial_output: Option<Num>,
         py: Python<'_>,
     ) -> PyResult<Self> {
+        // Numbers are never bools, and a wrong type names its argument
+        // (crate::number).
         let spec = Args {
-            order,
-            dt,
+            order: order.0,
+            dt: dt.0,
             feedback,
             skew,
-            constraint,
+            constraint: &constraint.0,
             eps,
-            settle_time,
-            k0,
-            k_u,
-            gamma,
+            settle_time: settle_time.0,
+            k0: k0.0,
+            k_u: k_u.0,
+            gamma: &gamma.0,
             rho_e,
             differentiator,
-            latch,
-            transition,
-            initial_derivatives,
-            dtype,
+            latch: &latch.0,
+            transition: &transition.0,
+            initial_derivatives: initial_derivatives.map(|d| d.into_iter().map(|x| x.0).collect()),
+            dtype: &dtype.0,
             integral,
-            output_limits,
-            rate_limit,
-            initial_output,
+            output_limits: output_limits.map(|(lo, hi)| (lo.0, hi.0)),
+            rate_limit: rate_limit.map(|r| r.0),
+            initial_output: initial_output.map(|u| u.0),
         }
         .parse()?;
         let c = Self::from_spec(spec)?;
@@ -308,6 +311,11 @@ impl PyController {
         )?;
         Ok((f, args))
     }
+}
+
+/// A signature default for a text argument.
+fn text(s: &str) -> Text {
+    Text(String::from(s))
 }
 
 /// The floor of a Python-to-Rust method call, for the benchmarks

@@ -69,7 +69,7 @@ impl Diagnostics {
     pub fn from_core<T: Real, const N: usize>(d: &famcc_core::Diagnostics<T, N>) -> Self {
         let f = |x: T| x.to_f64_lossless();
         Self {
-            t: f(d.t),
+            t: d.t,
             xi: f(d.xi),
             xi_nominal: f(d.xi_nominal),
             s: f(d.s),

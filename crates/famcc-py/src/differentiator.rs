@@ -3,6 +3,7 @@
 
 use crate::errors::{config_err, ConfigError};
 use crate::names::DISCRETIZATION;
+use crate::number::{Num, Text};
 use crate::orders::with_order;
 use famcc_core::config::{check_estimate_limits, check_order};
 use famcc_core::differentiator::{auto_discretization, paper_coefficients, PAPER_MU};
@@ -109,8 +110,11 @@ pub fn to_array<T: Real, const N: usize>(v: &[f64]) -> Option<[T; N]> {
 #[pymethods]
 impl HighGain {
     #[new]
-    #[pyo3(signature = (mu, a, discretization = DISCRETIZATION.default_name(), limits = None))]
-    fn new(mu: f64, a: Vec<f64>, discretization: &str, limits: Option<Vec<f64>>) -> PyResult<Self> {
+    #[pyo3(signature = (mu, a, discretization = Text(DISCRETIZATION.default_name().into()), limits = None))]
+    fn new(mu: Num, a: Vec<Num>, discretization: Text, limits: Option<Vec<Num>>) -> PyResult<Self> {
+        let (mu, discretization) = (mu.0, discretization.0.as_str());
+        let a: Vec<f64> = a.into_iter().map(|x| x.0).collect();
+        let limits: Option<Vec<f64>> = limits.map(|l| l.into_iter().map(|x| x.0).collect());
         check_order(a.len()).map_err(|e| {
             ConfigError::new_err(format!(
                 "a must have one coefficient per order: {e} (got {})",
@@ -149,7 +153,12 @@ impl HighGain {
         check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
         let mut a = vec![0.0; order];
         paper_coefficients(&mut a);
-        Self::new(mu, a, discretization, None)
+        Self::new(
+            Num(mu),
+            a.into_iter().map(Num).collect(),
+            Text(discretization.into()),
+            None,
+        )
     }
 
     #[getter]
@@ -190,6 +199,11 @@ impl HighGain {
         s
     }
     #[allow(clippy::type_complexity)]
+    /// Pickling for every protocol (0 and 1 too).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        Ok((slf.get_type().into_any(), slf.call_method0("__getnewargs__")?))
+    }
+
     fn __getnewargs__(&self) -> (f64, Vec<f64>, &'static str, Option<Vec<f64>>) {
         (
             self.mu,

@@ -153,7 +153,7 @@ impl Core {
     }
 
     pub fn time(&self) -> f64 {
-        with_core!(self, c => c.time().to_f64_lossless())
+        with_core!(self, c => c.time())
     }
 
     pub fn estimate(&self) -> Vec<f64> {

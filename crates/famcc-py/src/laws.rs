@@ -5,6 +5,7 @@
 use crate::array::map_float_or_array;
 use crate::errors::{config_err, ConfigError};
 use crate::names::TRANSITION;
+use crate::number::{Num, Text};
 use famcc_core::{Feedback, Real, Skew, SkewKind, Transition};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -22,8 +23,8 @@ macro_rules! law_class {
         impl $name {
             #[new]
             #[pyo3(signature = ($($field),*))]
-            fn new($($field: f64),*) -> PyResult<Self> {
-                let s = Self { $($field),* };
+            fn new($($field: Num),*) -> PyResult<Self> {
+                let s = Self { $($field: $field.0),* };
                 s.feedback::<f64>().validate().map_err(config_err)?;
                 Ok(s)
             }
@@ -47,6 +48,12 @@ macro_rules! law_class {
 
             fn __getnewargs__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
                 PyTuple::new(py, [$(self.$field),*])
+            }
+
+            /// Pickling for every protocol (0 and 1 too): the class and its
+            /// constructor arguments.
+            fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+                Ok((slf.get_type().into_any(), slf.call_method0("__getnewargs__")?))
             }
         }
 
@@ -218,9 +225,9 @@ macro_rules! skew_methods {
         #[pymethods]
         impl $name {
             #[new]
-            #[pyo3(signature = ($($field,)* transition = TRANSITION.default_name()))]
-            fn new($($field: f64,)* transition: &str) -> PyResult<Self> {
-                let s = Self { $($field,)* transition: TRANSITION.parse(transition, "transition")? };
+            #[pyo3(signature = ($($field,)* transition = Text(TRANSITION.default_name().into())))]
+            fn new($($field: Num,)* transition: Text) -> PyResult<Self> {
+                let s = Self { $($field: $field.0,)* transition: TRANSITION.parse(&transition.0, "transition")? };
                 s.skew::<f64>().validate().map_err(config_err)?;
                 Ok(s)
             }
@@ -234,6 +241,12 @@ macro_rules! skew_methods {
             }
             fn __getnewargs__(&self) -> ($(skew_methods!(@f64 $field),)* &'static str) {
                 ($(self.$field,)* TRANSITION.name(self.transition))
+            }
+
+            /// Pickling for every protocol (0 and 1 too): the class and its
+            /// constructor arguments.
+            fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+                Ok((slf.get_type().into_any(), slf.call_method0("__getnewargs__")?))
             }
         }
     };

@@ -34,6 +34,7 @@ mod functions;
 mod kwargs;
 mod laws;
 mod names;
+mod number;
 mod orders;
 mod paper;
 mod spec;

@@ -13,7 +13,12 @@
 //! - `worst2` / `worst3`: the same replay timed per step by SysTick (under
 //!   `-icount shift=0`: 1 instruction = 1 ns, 40 per 25 MHz tick); prints
 //!   the largest and the summed ticks.
+//! - `adversarial2` / `adversarial3`: the worst and the median step over the
+//!   replay with adversarial samples injected (`adversarial.rs`).
 #![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(target_os = "none")]
+mod adversarial;
 
 #[cfg(not(target_os = "none"))]
 fn main() {
@@ -188,9 +193,21 @@ mod app {
                 drop(out);
                 exit(0)
             }
+            (b"adversarial2", _) | (b"adversarial3", _) => {
+                let (mut c2, mut c3) = controllers();
+                if mode == b"adversarial2" {
+                    suite::example1_loop(false, &mut Quiet, &mut |i, e, _| rec.e2[i as usize] = e);
+                    crate::adversarial::order2(&mut out, &mut c2, &rec.e2);
+                } else {
+                    suite::example3_loop(false, &mut Quiet, &mut |i, e, _| rec.e3[i as usize] = e);
+                    crate::adversarial::order3(&mut out, &mut c3, &rec.e3);
+                }
+                drop(out);
+                exit(0)
+            }
             (b"check", _) => {}
             _ => {
-                out.s("usage: famcc-fw [check | bench2 K | bench3 K | worst2 | worst3]")
+                out.s("usage: famcc-fw [check | bench2 K | bench3 K | worst2 | worst3 | adversarial2 | adversarial3]")
                     .nl();
                 drop(out);
                 exit(64)

@@ -2,7 +2,7 @@
 //! and the one place where they are checked.
 
 use super::{check_estimate_limits, Config, DEFAULT_K0, DEFAULT_SETTLE_TIME};
-use crate::error::{positive, ConfigError};
+use crate::error::{positive, scale, ConfigError};
 use crate::{Constraint, Feedback, Gamma, HighGain, Latch, Real, Skew, SkewedLaw, Transition};
 
 /// The flexible-boundary margin a builder was given.
@@ -211,8 +211,17 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
     }
 
     /// Checks every rule (the error names the parameter and the rule, and
-    /// the stage for per-stage values) and discretizes the differentiator.
+    /// the stage for per-stage values), discretizes the differentiator, and
+    /// checks that the first steps succeed for moderate inputs (the probe of
+    /// docs/design.md §3.9).
     pub fn build(&self) -> Result<Config<T, N>, ConfigError> {
+        let config = self.build_unprobed()?;
+        crate::controller::probe(&config)?;
+        Ok(config)
+    }
+
+    /// [`ConfigBuilder::build`] without the probe.
+    pub(crate) fn build_unprobed(&self) -> Result<Config<T, N>, ConfigError> {
         if N == 0 {
             return Err(ConfigError::new("order", "must be >= 1"));
         }
@@ -233,6 +242,7 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         if !(self.k0 > T::one() && self.k0.is_finite()) {
             return Err(ConfigError::new("k0", "must be finite and > 1"));
         }
+        scale(self.k0, "k0")?;
         self.constraint.validate(N)?;
         let rho_e = match self.rho_e {
             Margin::Default => Some(self.constraint.default_rho_e()),
@@ -265,6 +275,12 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         if let Some(d) = &self.initial_derivatives {
             if d.iter().any(|v| !v.is_finite()) {
                 return Err(ConfigError::new("initial_derivatives", "must be finite"));
+            }
+            if d.iter().any(|v| v.abs() > T::scale_limit()) {
+                return Err(ConfigError::new(
+                    "initial_derivatives",
+                    "must be at most 2^256 in f64 and 2^32 in f32 in magnitude (moderate values, e.g. 0)",
+                ));
             }
         }
         if let Some(l) = &self.estimate_limits {

@@ -236,11 +236,33 @@ impl<T: Real, const N: usize> Config<T, N> {
         self.initial_output
     }
 
+    /// A 52-bit fingerprint of the configuration's values (FNV-1a over
+    /// their `Debug` text), exact in an `f64`. Snapshots carry it, so that a
+    /// state is never restored into a controller with another configuration.
+    pub fn fingerprint(&self) -> u64 {
+        let mut h = Fnv(0xcbf2_9ce4_8422_2325);
+        // Writing into `Fnv` cannot fail.
+        let _ = core::fmt::write(&mut h, format_args!("{:?}", self.to_builder()));
+        h.0 & ((1 << 52) - 1)
+    }
+
     /// The differentiator of [`Config::differentiator`] discretized for a
     /// one-off period `dt` (order [`Config::plant_order`]).
     pub fn discretize_at(&self, dt: T) -> Option<Result<DiscreteHgd<T, N>, ConfigError>> {
         self.differentiator
             .as_ref()
             .map(|h| h.discretize_order(dt, self.plant_order()))
+    }
+}
+
+/// The FNV-1a hash of the text written into it.
+struct Fnv(u64);
+
+impl core::fmt::Write for Fnv {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        for b in s.bytes() {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+        Ok(())
     }
 }

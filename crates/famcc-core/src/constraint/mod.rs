@@ -239,7 +239,7 @@ impl<T: Real> Constraint<T> {
                 }
                 let (x_u, y_u) = (env.x.at(t), env.y.at(t));
                 let sigma = self.offset(law, m.s_prev, m.ds_prev, x_u, y_u).sigma;
-                finish(sigma, x_u, (x_u * x_u + y_u * y_u).root(), (x_u, y_u), flexible)
+                finish(sigma, x_u, half_width(x_u, y_u), (x_u, y_u), flexible)
             }
         }
     }
@@ -261,7 +261,15 @@ fn finish<T: Real>(
         Some((rho_e, transition)) => expansion(transition, xi_nominal.abs() * d_u, d_u, rho_e),
         None => T::one(),
     };
-    let (xi, clamped) = clamp_below_one(xi_nominal / factor);
+    // A finite offset so far out that the expansion overflowed: |xi~| =
+    // d_sc / (d_sc + rho_e) is 1 to the float's precision (then clamped below
+    // 1). An infinite offset stays an overflow (NaN).
+    let (xi, factor) = if factor.is_finite() || !xi_nominal.is_finite() {
+        (xi_nominal / factor, factor)
+    } else {
+        (xi_nominal.signum(), T::max_value())
+    };
+    let (xi, clamped) = clamp_below_one(xi);
     Evaluation {
         xi,
         xi_nominal,
@@ -269,6 +277,19 @@ fn finish<T: Real>(
         nominal,
         clamped,
     }
+}
+
+/// `d_U = sqrt(x_U^2 + y_U^2)`, scaled when the squares would overflow
+/// (latched widths far out of the usual range).
+#[inline(always)]
+fn half_width<T: Real>(x_u: T, y_u: T) -> T {
+    let d = (x_u * x_u + y_u * y_u).root();
+    if d.is_finite() {
+        return d;
+    }
+    let m = x_u.max(y_u);
+    let (a, b) = (x_u / m, y_u / m);
+    m * (a * a + b * b).root()
 }
 
 /// `xi` clamped to the largest float below 1 in magnitude (docs/design.md

@@ -8,16 +8,22 @@ use crate::Real;
 
 /// Iteration budget of [`decreasing_root`]'s refinement phase.
 pub const ROOT_ITERATIONS: usize = 96;
-/// Iteration budget of [`decreasing_root`]'s bracketing phase (enough to
-/// double a step from 1 past the largest finite `f64`).
-pub const BRACKET_ITERATIONS: usize = 1100;
+/// Iteration budget of [`decreasing_root`]'s bracketing phase: 16 doublings
+/// of the step, then squarings (from `2^16` past the largest finite `f64` in
+/// 7), so every root in range is bracketed within 23 evaluations.
+pub const BRACKET_ITERATIONS: usize = 24;
+/// Doublings before the bracketing step is squared instead.
+const DOUBLINGS: usize = 16;
 
 /// The root of a strictly decreasing function `f`, searched from `x0`.
 ///
-/// Phase 1 brackets the root by doubling steps from `x0` (at most
-/// [`BRACKET_ITERATIONS`]); phase 2 refines with the Illinois variant of
-/// regula falsi, which falls back to bisection when it stalls (at most
-/// [`ROOT_ITERATIONS`]). It stops when the bracket is within 4 ulps of the
+/// Phase 1 brackets the root by doubling steps from `x0`, squaring them
+/// after 16 doublings (at most [`BRACKET_ITERATIONS`]); phase 2 refines, a
+/// bracket wider than a factor 4 on one side of 0 first by geometric
+/// bisection, then with the Illinois variant of regula falsi, which falls
+/// back to bisection when it stalls (at most [`ROOT_ITERATIONS`] in all).
+/// So a search costs at most `1 + BRACKET_ITERATIONS + ROOT_ITERATIONS`
+/// evaluations of `f`, whatever the state (docs/design.md §3.12). It stops when the bracket is within 4 ulps of the
 /// root or `f` is exactly zero, so the result is within a few ulps of the
 /// true root (absolute `4 * epsilon` for roots below 1 in magnitude). If no
 /// sign change exists in the representable range the nearest end is
@@ -40,7 +46,7 @@ pub fn decreasing_root<T: Real>(f: impl Fn(T) -> T, x0: T) -> T {
     let (mut a, mut fa) = (x0, f0);
     let (mut b, mut fb) = (x0, f0);
     let mut bracketed = false;
-    for _ in 0..BRACKET_ITERATIONS {
+    for i in 0..BRACKET_ITERATIONS {
         let x = x0 + dir * step;
         let fx = f(x);
         if !x.is_finite() || !fx.is_finite() {
@@ -57,7 +63,11 @@ pub fn decreasing_root<T: Real>(f: impl Fn(T) -> T, x0: T) -> T {
         }
         a = x;
         fa = fx;
-        step = step * T::from_f64(2.0);
+        step = if i + 1 < DOUBLINGS {
+            step * T::from_f64(2.0)
+        } else {
+            step * step.max(T::from_f64(2.0))
+        };
     }
     if !bracketed {
         return a;
@@ -97,6 +107,7 @@ pub fn bracketed_root<T: Real>(f: impl Fn(T) -> T, lo: T, hi: T) -> Option<T> {
 /// Phase 2 of the root searches: `f(a)` and `f(b)` differ in sign.
 fn refine<T: Real>(f: &impl Fn(T) -> T, mut a: T, mut fa: T, mut b: T, mut fb: T) -> T {
     let four_eps = T::from_f64(4.0) * T::epsilon();
+    let four = T::from_f64(4.0);
     let mut side = 0i8;
     for _ in 0..ROOT_ITERATIONS {
         let width = (b - a).abs();
@@ -104,15 +115,27 @@ fn refine<T: Real>(f: &impl Fn(T) -> T, mut a: T, mut fa: T, mut b: T, mut fb: T
         if width <= four_eps * scale {
             break;
         }
-        let mut x = (a * fb - b * fa) / (fb - fa);
+        let (near, far) = (a.abs().min(b.abs()), a.abs().max(b.abs()));
+        // A bracket over many binades on one side of 0 (only after the
+        // squaring steps of phase 1): halve it in the exponent first.
+        let geometric = (a > T::zero()) == (b > T::zero()) && near > T::zero() && far > four * near;
+        let mut x = if geometric {
+            near.root() * far.root() * a.signum()
+        } else {
+            (a * fb - b * fa) / (fb - fa)
+        };
         let lo = a.min(b);
         let hi = a.max(b);
         if !(x > lo && x < hi) {
             x = a + (b - a) * T::from_f64(0.5);
         }
         let fx = f(x);
-        if fx == T::zero() || !fx.is_finite() {
+        if fx == T::zero() {
             return x;
+        }
+        if !fx.is_finite() {
+            // Never a point where f is not finite: the better end instead.
+            break;
         }
         if (fx > T::zero()) == (fa > T::zero()) {
             a = x;

@@ -5,8 +5,10 @@ use crate::Real;
 /// What the controller did at its last step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Diagnostics<T, const N: usize> {
-    /// Time of the last step's sample, seconds.
-    pub t: T,
+    /// Time of the last step's sample, seconds (exact: from the integer
+    /// sample count, docs/design.md §3.10; 0 before the first step and after
+    /// `restore`).
+    pub t: f64,
     /// The constraint variable used for the output (flexible `xi~` of
     /// eq. (31) when the flexible boundary is on), after clamping.
     pub xi: T,
@@ -59,7 +61,7 @@ impl<T: Real, const N: usize> Default for Diagnostics<T, N> {
     fn default() -> Self {
         let z = T::zero();
         Self {
-            t: z,
+            t: 0.0,
             xi: z,
             xi_nominal: z,
             s: z,

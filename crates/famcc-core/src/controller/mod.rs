@@ -43,33 +43,63 @@
 //! assert!(ctrl.diagnostics().xi.abs() < 1.0);
 //! ```
 
+mod clock;
 mod diagnostics;
 mod output;
+mod probe;
+mod recover;
 mod snapshot;
 mod start;
 mod steps;
 
 pub use diagnostics::Diagnostics;
+pub(crate) use probe::probe;
+pub use probe::PROBE_ERRORS;
+pub use recover::RECOVERY_SAMPLES;
 pub use snapshot::{Snapshot, SNAPSHOT_FIELDS};
 pub use start::MAX_WIDENING;
 
 use crate::constraint::Envelopes;
-use crate::error::{ConfigError, StepError};
+use crate::error::StepError;
 use crate::{differentiator, manifold, Config, Real};
+use clock::Clock;
 use output::Limits;
+use recover::{in_range, width_in_range, Cause};
 
 /// The controller's mutable state (everything `reset` clears).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct State<T, const N: usize> {
     started: bool,
-    /// Time of the next sample = `t_base + k * dt`.
-    t_base: T,
-    k: u64,
+    /// The clock at the next sample.
+    clock: Clock<T>,
+    /// The clock at the last successful step's sample (the diagnostics' time).
+    sampled: Clock<T>,
     /// The estimate in the law's coordinates (with integral action slot 0
     /// holds the integral `I`).
     zhat: [T; N],
     envelopes: Envelopes<T>,
     diag: Diagnostics<T, N>,
+}
+
+impl<T: Real, const N: usize> State<T, N> {
+    /// A failed step on a finite sample (the recovery rule, recover.rs):
+    /// before the first step nothing changes; after it the sample is
+    /// consumed, the estimate restarts and the clock advances.
+    #[cold]
+    fn consume(
+        &mut self,
+        c: &Config<T, N>,
+        measured: &Measured<T, N>,
+        hgd: Option<&differentiator::DiscreteHgd<T, N>>,
+        clock_next: Clock<T>,
+        cause: Cause,
+    ) -> StepError {
+        if self.started {
+            self.zhat = recover::restarted(c, measured, hgd, cause);
+            self.clock = clock_next;
+        }
+        StepError::Overflow
+    }
 }
 
 /// What a step measured: the output error (output feedback, eq. (35)) or
@@ -100,8 +130,8 @@ impl<T: Real, const N: usize> Controller<T, N> {
     fn initial_state(config: &Config<T, N>) -> State<T, N> {
         State {
             started: false,
-            t_base: T::zero(),
-            k: 0,
+            clock: Clock::start(config.dt()),
+            sampled: Clock::start(config.dt()),
             zhat: [T::zero(); N],
             envelopes: config.constraint().envelopes(config.settle_time()),
             diag: Diagnostics::default(),
@@ -118,6 +148,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
     /// used, so `step()` does not pay for values only a reader needs.
     pub fn diagnostics(&self) -> Diagnostics<T, N> {
         let mut d = self.state.diag;
+        d.t = self.state.sampled.time();
         if self.state.started {
             let m = manifold::evaluate(&d.z_hat, self.config.laws());
             d.s = m.s();
@@ -128,49 +159,22 @@ impl<T: Real, const N: usize> Controller<T, N> {
         d
     }
 
-    /// The time of the next sample, seconds.
-    pub fn time(&self) -> T {
-        self.state.t_base + T::from_u64(self.state.k) * self.config.dt()
+    /// The time of the next sample, seconds (exact: an integer sample count
+    /// and an `f64` base, docs/design.md §3.10).
+    pub fn time(&self) -> f64 {
+        self.state.clock.time()
+    }
+
+    /// The number of samples of the current run at one period (all the
+    /// samples so far when only the nominal `dt` was used), saturating at
+    /// `u64::MAX`.
+    pub fn samples(&self) -> u64 {
+        self.state.clock.k
     }
 
     /// The current estimate `Zhat` (the one the next step will use).
     pub fn estimate(&self) -> &[T; N] {
         &self.state.zhat
-    }
-
-    /// The state as plain values; [`Controller::restore`] continues from it.
-    pub fn snapshot(&self) -> Snapshot<T, N> {
-        let st = &self.state;
-        Snapshot {
-            started: st.started,
-            t_base: st.t_base,
-            k: st.k,
-            zhat: st.zhat,
-            rho0_x: st.envelopes.x.rho0,
-            rho0_y: st.envelopes.y.rho0,
-            clamp_count: st.diag.clamp_count,
-            last_v: st.diag.v,
-        }
-    }
-
-    /// Continues from a [`Controller::snapshot`]. Rejects non-finite values,
-    /// a negative time and widths below the final ones; on error nothing
-    /// changes. The diagnostics keep only the clamp count and the last output
-    /// (the count of expansions with headroom restarts at 0). The estimate
-    /// carries the integral (slot 0) with integral action.
-    pub fn restore(&mut self, snap: &Snapshot<T, N>) -> Result<(), ConfigError> {
-        snap.check(self.config.constraint().eps())?;
-        let mut st = Self::initial_state(&self.config);
-        st.started = snap.started;
-        st.t_base = snap.t_base;
-        st.k = snap.k;
-        st.zhat = snap.zhat;
-        st.envelopes.x.rho0 = snap.rho0_x;
-        st.envelopes.y.rho0 = snap.rho0_y;
-        st.diag.clamp_count = snap.clamp_count;
-        st.diag.v = snap.last_v;
-        self.state = st;
-        Ok(())
     }
 
     /// Back to the state before the first step (configuration kept).
@@ -204,34 +208,36 @@ impl<T: Real, const N: usize> Controller<T, N> {
             None => c.dt(),
         };
         let first = !self.state.started;
+        let settle_time = c.settle_time();
+        // This step's discretization (a one-off period is rediscretized).
+        let one_off;
+        let hgd = match one_off_dt.and_then(|dt| c.discretize_at(dt)) {
+            Some(d) => {
+                one_off = d.map_err(|_| StepError::InvalidDt)?;
+                Some(&one_off)
+            }
+            None => c.discretized(),
+        };
         // The measured sample, the vector the law uses, and the estimate the
         // next step will use (all in the law's coordinates).
+        // Without a differentiator the next step measures its own vector.
+        let carried = hgd.is_some();
         let (e, mut z, mut next) = match measured {
-            Measured::Error(e) => {
-                let one_off;
-                let hgd = match one_off_dt.and_then(|dt| c.discretize_at(dt)) {
-                    Some(d) => {
-                        one_off = d.map_err(|_| StepError::InvalidDt)?;
-                        Some(&one_off)
-                    }
-                    None => c.discretized(),
-                };
-                match hgd {
-                    Some(d) => {
-                        let z = self.current_estimate(e);
-                        (e, self.limited(z), d.advance(&z, e))
-                    }
-                    // Order 1 needs no differentiator: Z = (e) (or (I, e)) is measured.
-                    None if !differentiator::needed_at(c.plant_order()) => {
-                        let mut z = [e; N];
-                        if let (1, Some(i)) = (off, z.first_mut()) {
-                            *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
-                        }
-                        (e, z, z)
-                    }
-                    None => return Err(StepError::NoDifferentiator),
+            Measured::Error(e) => match hgd {
+                Some(d) => {
+                    let z = self.current_estimate(e);
+                    (e, self.limited(z), d.advance(&z, e))
                 }
-            }
+                // Order 1 needs no differentiator: Z = (e) (or (I, e)) is measured.
+                None if !differentiator::needed_at(c.plant_order()) => {
+                    let mut z = [e; N];
+                    if let (1, Some(i)) = (off, z.first_mut()) {
+                        *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
+                    }
+                    (e, z, z)
+                }
+                None => return Err(StepError::NoDifferentiator),
+            },
             Measured::State(mut z) => {
                 let e = z.get(off).copied().unwrap_or_else(T::zero);
                 if let (1, Some(i)) = (off, z.first_mut()) {
@@ -248,14 +254,18 @@ impl<T: Real, const N: usize> Controller<T, N> {
         if applied.is_some_and(|a| !a.is_finite()) {
             return Err(StepError::NonFiniteApplied);
         }
-        if next.iter().any(|v| !v.is_finite()) {
-            return Err(StepError::Overflow);
-        }
-        let t = self.time();
-        let t_next = t + dt;
-        if !t_next.is_finite() {
+        // A one-off period within the scale range of §3.9 (the clock then
+        // stays finite for any number of samples).
+        let in_scale = one_off_dt.is_none() || crate::error::scale(dt, "dt").is_ok();
+        let Some(clock_next) = self.state.clock.advanced(dt, settle_time).filter(|_| in_scale) else {
             return Err(StepError::InvalidDt);
+        };
+        // Beyond this point a failure after the first step consumes the
+        // sample and restarts the estimate (the recovery rule, recover.rs).
+        if carried && !in_range(&next) {
+            return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Update));
         }
+        let t = self.state.clock.law_time(settle_time);
         // Bumpless start with integral action: the I_0 whose output is u0.
         if let (true, 1, Some(u0)) = (first, off, c.initial_output()) {
             let i0 = self.initial_integral(&z, u0, t);
@@ -292,22 +302,12 @@ impl<T: Real, const N: usize> Controller<T, N> {
         }
         let v = -c.k_u() * c.gamma().eval(eval.xi);
         let env = &self.state.envelopes;
-        let latched = !first || (env.x.rho0.is_finite() && env.y.rho0.is_finite());
+        let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
         if !(latched && v.is_finite() && eval.xi.is_finite()) {
-            match unlatched {
-                Some(envelopes) => self.state.envelopes = envelopes,
-                None => {
-                    // The sample is valid: let the estimate and the clock move
-                    // on so that the controller recovers once the estimate is
-                    // back in range (one outlier must not stop it for good).
-                    if let (1, Some(n0), Some(z0)) = (off, next.first_mut(), z.first()) {
-                        *n0 = *z0;
-                    }
-                    self.state.zhat = next;
-                    self.advance_clock(t_next, dt);
-                }
+            if let Some(envelopes) = unlatched {
+                self.state.envelopes = envelopes;
             }
-            return Err(StepError::Overflow);
+            return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Law));
         }
 
         // The output limits, what is known of the actuator, the integral
@@ -335,11 +335,11 @@ impl<T: Real, const N: usize> Controller<T, N> {
             };
             integrating = limited.integrates(e, eval.xi_nominal.abs() * width <= eps);
             let i_next = if integrating { i + dt * e } else { i };
-            if !i_next.is_finite() {
+            if !in_range(&[i_next]) {
                 if let Some(envelopes) = unlatched {
                     self.state.envelopes = envelopes;
                 }
-                return Err(StepError::Overflow);
+                return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Update));
             }
             *n0 = i_next;
         }
@@ -351,16 +351,20 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let (previous_v, previous_clamps) = (st.diag.v, st.diag.clamp_count);
         let unsaturated = st.diag.unsaturated_expansions;
         st.diag = Diagnostics {
-            t,
+            // The time is read from `sampled` by `diagnostics()`.
+            t: 0.0,
             xi: eval.xi,
             xi_nominal: eval.xi_nominal,
-            bounds: (factor * x_u, factor * y_u),
+            bounds: (
+                (factor * x_u).min(T::max_value()),
+                (factor * y_u).min(T::max_value()),
+            ),
             nominal_bounds: (x_u, y_u),
             z_hat: z,
             expanded,
             expansion: factor,
             saturation_gap: applied.map(|a| previous_v - a),
-            clamp_count: previous_clamps + u64::from(eval.clamped),
+            clamp_count: previous_clamps.saturating_add(u64::from(eval.clamped)),
             v: limited.u,
             v_unlimited: v,
             integral,
@@ -371,28 +375,18 @@ impl<T: Real, const N: usize> Controller<T, N> {
         };
         st.started = true;
         st.zhat = next;
-        self.advance_clock(t_next, dt);
+        st.sampled = st.clock;
+        st.clock = clock_next;
         Ok(limited.u)
     }
 
-    /// The estimate for this step: the stored one, or the initial one
-    /// (`(e0, d2, ..., dn)` in slots `offset..N`; the integral starts at 0).
+    /// The estimate for this step: the stored one, or the initial one.
     #[inline]
     fn current_estimate(&self, e: T) -> [T; N] {
         if self.state.started {
             return self.state.zhat;
         }
-        let mut z = self
-            .config
-            .initial_derivatives()
-            .copied()
-            .unwrap_or([T::zero(); N]);
-        let off = self.config.estimate_offset();
-        z.iter_mut().take(off).for_each(|i| *i = T::zero());
-        if let Some(z1) = z.get_mut(off) {
-            *z1 = e;
-        }
-        z
+        recover::initial_estimate(&self.config, e)
     }
 
     /// The estimate after the optional saturation `|z_hat_i| <= limit_i`
@@ -406,16 +400,5 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 .for_each(|(z, l)| *z = z.max(-*l).min(*l));
         }
         z
-    }
-
-    #[inline]
-    fn advance_clock(&mut self, t_next: T, dt: T) {
-        let st = &mut self.state;
-        if dt == self.config.dt() {
-            st.k += 1;
-        } else {
-            st.t_base = t_next;
-            st.k = 0;
-        }
     }
 }

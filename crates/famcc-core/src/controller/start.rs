@@ -21,6 +21,7 @@
 //! Both are scalar root searches ([`crate::constraint::bracketed_root`]) on
 //! the first step's own evaluation, run once.
 
+use super::recover::width_in_range;
 use super::Controller;
 use crate::constraint::{bracketed_root, Envelopes};
 use crate::manifold;
@@ -58,6 +59,10 @@ impl<T: Real, const N: usize> Controller<T, N> {
             t,
             c.rho_e().map(|rho_e| (rho_e, c.transition())),
         );
+        if !(width_in_range(env.x.rho0) && width_in_range(env.y.rho0)) {
+            // A latch the step would refuse (recover.rs): not a candidate.
+            return T::nan();
+        }
         if nominal {
             eval.xi_nominal
         } else {
@@ -106,13 +111,20 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let (mut best, mut best_f) = (T::zero(), f0.abs());
         for _ in 0..DOUBLINGS {
             step = step * T::from_f64(2.0);
+            // I_0 stays within the estimate's range (docs/design.md §3.7).
+            if step > T::estimate_range() * T::from_f64(0.5) {
+                break;
+            }
             for x in [step, -step] {
                 let fx = f(x);
                 if !fx.is_finite() {
                     continue;
                 }
                 if (fx > T::zero()) != (f0 > T::zero()) {
-                    return bracketed_root(f, T::zero(), x).unwrap_or(x);
+                    // A sign change across a jump (a discontinuous law) is
+                    // no root: keep the root only when it is one.
+                    let r = bracketed_root(f, T::zero(), x).unwrap_or(x);
+                    return if f(r).abs() < f0.abs() { r } else { T::zero() };
                 }
                 if fx.abs() < best_f {
                     (best, best_f) = (x, fx.abs());

@@ -1,0 +1,108 @@
+//! The recovery rule (docs/design.md §3.7): the one place that decides what
+//! a step whose finite sample could not be used leaves behind.
+//!
+//! The estimate is kept in range, `|z_hat_i| <= R` with `R` =
+//! [`Real::estimate_range`] (`2^512` in `f64`, `2^64` in `f32`). A step
+//! after the first fails with [`crate::StepError::Overflow`] when the law
+//! overflowed on its estimate, or when the update would take the estimate
+//! (or the integral) out of range. The sample is then consumed: the clock
+//! advances, the latched envelopes, the diagnostics and the last output stay,
+//! and the estimate *restarts* as at the first step (§3.4), from this
+//! step's sample: `Phi (e, d_2, ..., d_n) + Gamma e` (the integral at 0; the
+//! measured vector for `step_state`). When that is out of range too (the
+//! sample itself is the outlier), it restarts from a zero error instead.
+//!
+//! So the stored estimate is always in range, and a sample that the first
+//! step could use (validation guarantees that for `|e| <= 1e3`, §3.9) makes
+//! the next step's estimate one the law can use: after any finite input,
+//! the second moderate sample returns `Ok` (at most one `Overflow` among
+//! the moderate samples: [`RECOVERY_SAMPLES`]).
+
+use super::Measured;
+use crate::{Config, DiscreteHgd, Real};
+
+/// The number of moderate samples (`|e| <= 1e3`, docs/design.md §3.9)
+/// after which a controller returns `Ok` again, whatever came before: the
+/// first may still return `Overflow` (and restarts the estimate), the
+/// second is `Ok`.
+pub const RECOVERY_SAMPLES: usize = 2;
+
+/// True when every entry is within the estimate's range (NaN is not).
+#[inline(always)]
+pub(super) fn in_range<T: Real, const N: usize>(z: &[T; N]) -> bool {
+    let r = T::estimate_range();
+    z.iter().all(|v| v.abs() <= r)
+}
+
+/// True when a latched envelope width can be used: finite (the oblique
+/// constraint's `sqrt(x_U^2 + y_U^2)` is scaled when the squares overflow).
+#[inline(always)]
+pub(super) fn width_in_range<T: Real>(w: T) -> bool {
+    w.is_finite()
+}
+
+/// Why a step could not use its sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Cause {
+    /// The law overflowed on the stored estimate: the sample may be fine.
+    Law,
+    /// The update would take the estimate or the integral out of range: the
+    /// sample is (or drove) the outlier.
+    Update,
+}
+
+/// The estimate the next step uses after this step's sample could not be
+/// used: restarted from the sample, else from a zero error (the module
+/// docs). `hgd` is this step's discretization.
+pub(super) fn restarted<T: Real, const N: usize>(
+    c: &Config<T, N>,
+    measured: &Measured<T, N>,
+    hgd: Option<&DiscreteHgd<T, N>>,
+    cause: Cause,
+) -> [T; N] {
+    let zero = Measured::Error(T::zero());
+    let from_sample = match cause {
+        Cause::Law => Some(measured),
+        Cause::Update => None,
+    };
+    for m in from_sample.into_iter().chain([&zero]) {
+        let (seed, e) = seed(c, m);
+        let next = match hgd {
+            Some(d) => d.advance(&seed, e),
+            None => seed,
+        };
+        if in_range(&next) {
+            return next;
+        }
+    }
+    // Unreachable for a validated configuration (the zero error's estimate
+    // is in range, §3.9); zeros are in range in any case.
+    [T::zero(); N]
+}
+
+/// The first step's estimate for a measurement, with the integral at 0,
+/// and the measured error.
+fn seed<T: Real, const N: usize>(c: &Config<T, N>, m: &Measured<T, N>) -> ([T; N], T) {
+    let off = c.estimate_offset();
+    match m {
+        Measured::Error(e) => (initial_estimate(c, *e), *e),
+        Measured::State(z) => {
+            let mut z = *z;
+            z.iter_mut().take(off).for_each(|i| *i = T::zero());
+            (z, z.get(off).copied().unwrap_or_else(T::zero))
+        }
+    }
+}
+
+/// The first step's estimate `(e0, d2, ..., dn)` in slots `offset..N`
+/// (docs/design.md §3.4; the integral starts at 0).
+#[inline]
+pub(super) fn initial_estimate<T: Real, const N: usize>(c: &Config<T, N>, e: T) -> [T; N] {
+    let mut z = c.initial_derivatives().copied().unwrap_or([T::zero(); N]);
+    let off = c.estimate_offset();
+    z.iter_mut().take(off).for_each(|i| *i = T::zero());
+    if let Some(z1) = z.get_mut(off) {
+        *z1 = e;
+    }
+    z
+}

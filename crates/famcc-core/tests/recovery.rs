@@ -1,0 +1,240 @@
+//! Reliability (docs/design.md §3.7, §3.9, §3.10): bounded recovery from
+//! any finite input, validation of configurations that could never run, a
+//! clock exact for 10^10 steps, and `restore` checking every field. The
+//! randomized counterpart is `tests/fuzz.rs`.
+#![allow(clippy::unwrap_used, clippy::indexing_slicing)]
+
+mod common;
+
+use common::{rk4, Second, Third, Variant};
+use famcc_core::{
+    Config, Constraint, Controller, Discretization, Feedback, HighGain, Real, Skew, StepError,
+    RECOVERY_SAMPLES,
+};
+
+/// The lock-up of issue 15: f32, order 2, the discontinuous law, LoMC, the
+/// exact differentiator; four finite samples used to lock it for good.
+#[test]
+fn the_reported_lock_up_recovers() {
+    let cfg = Config::<f32, 2>::builder(
+        1e-3,
+        &[(
+            Feedback::MoulayDiscontinuous {
+                beta: 1.0,
+                lambda: 1.0,
+                mu: 0.5,
+            },
+            None,
+        )],
+        Constraint::Longitudinal { eps: 0.1 },
+        5.0,
+    )
+    .differentiator(Some(HighGain::paper()))
+    .build()
+    .unwrap();
+    let mut c = Controller::new(cfg);
+    for e in [-f32::MAX, 1e19, 3.4e38, f32::MAX] {
+        let _ = c.step(e);
+    }
+    let results: Vec<_> = (0..20).map(|_| c.step(0.1)).collect();
+    assert!(
+        results[RECOVERY_SAMPLES - 1..].iter().all(Result::is_ok),
+        "{results:?}"
+    );
+}
+
+/// Consecutive failed steps after one outlier in the closed loop of the
+/// paper's example (the caller holds its last output meanwhile), and whether
+/// the loop is back within `eps` at the end.
+fn outage<T: Real, const N: usize>(
+    mut c: Controller<T, N>,
+    plant: impl Fn(f64, &[f64; N], f64) -> [f64; N],
+    x0: [f64; N],
+    outlier: f64,
+) -> (usize, f64) {
+    let dt = c.config().dt().to_f64_lossless();
+    let (mut x, mut u, mut failed, mut last) = (x0, 0.0, 0, 0.0);
+    for k in 0..10_000 {
+        let t = k as f64 * dt;
+        let e = x[0] - t.sin();
+        let sample = if k == 5_000 { outlier } else { e };
+        match c.step(T::from_f64(sample)) {
+            Ok(v) => u = v.to_f64_lossless().clamp(-100.0, 100.0),
+            Err(err) => {
+                assert_eq!(err, StepError::Overflow);
+                failed += 1;
+            }
+        }
+        x = rk4(&Wrap(&plant), t, &x, u, dt);
+        last = e.abs();
+    }
+    (failed, last)
+}
+
+struct Wrap<'a, F>(&'a F);
+
+impl<const N: usize, F: Fn(f64, &[f64; N], f64) -> [f64; N]> common::TimePlant<N> for Wrap<'_, F> {
+    fn initial_state(&self) -> [f64; N] {
+        [0.0; N]
+    }
+    fn rate(&self, t: f64, x: &[f64; N], u: f64) -> [f64; N] {
+        (self.0)(t, x, u)
+    }
+}
+
+/// The outage of a single outlier (1e300 in f64, f32::MAX in f32) on the
+/// paper's three examples: one sample, the outlier's own (docs/design.md
+/// §3.7); the loop is back within the accuracy by the end.
+#[test]
+fn one_outlier_costs_one_sample_on_the_papers_examples() {
+    use common::TimePlant;
+    use famcc_paper::designs;
+    let p2 = Second(Variant::Code);
+    let p3 = Third(Variant::Code);
+    let f2 = |t: f64, x: &[f64; 2], u: f64| p2.rate(t, x, u);
+    let f3 = |t: f64, x: &[f64; 3], u: f64| p3.rate(t, x, u);
+    let runs = [
+        (
+            "example 1 f64",
+            outage(
+                Controller::new(designs::example1(Variant::Code, 1e-3).unwrap()),
+                f2,
+                p2.initial_state(),
+                1e300,
+            ),
+            0.1,
+        ),
+        (
+            "example 2 f64",
+            outage(
+                Controller::new(designs::example2(Variant::Code, 1e-3).unwrap()),
+                f2,
+                p2.initial_state(),
+                1e300,
+            ),
+            0.15,
+        ),
+        (
+            "example 3 f64",
+            outage(
+                Controller::new(designs::example3(Variant::Code, 1e-3).unwrap()),
+                f3,
+                p3.initial_state(),
+                1e300,
+            ),
+            0.1,
+        ),
+        (
+            "example 1 f32",
+            outage(
+                Controller::new(designs::example1::<f32>(Variant::Code, 1e-3).unwrap()),
+                f2,
+                p2.initial_state(),
+                f32::MAX.into(),
+            ),
+            0.1,
+        ),
+        (
+            "example 2 f32",
+            outage(
+                Controller::new(designs::example2::<f32>(Variant::Code, 1e-3).unwrap()),
+                f2,
+                p2.initial_state(),
+                f32::MAX.into(),
+            ),
+            0.15,
+        ),
+        (
+            "example 3 f32",
+            outage(
+                Controller::new(designs::example3::<f32>(Variant::Code, 1e-3).unwrap()),
+                f3,
+                p3.initial_state(),
+                f32::MAX.into(),
+            ),
+            0.1,
+        ),
+    ];
+    for (name, (failed, last), eps) in runs {
+        println!("{name}: {failed} failed step(s) after the outlier, |z1| = {last:.2e} at 10 s");
+        assert!(failed <= 1, "{name}: {failed} failed steps");
+        assert!(last < eps, "{name}: |z1| = {last} at the end");
+    }
+}
+
+fn lomc<T: Real, const N: usize>() -> famcc_core::ConfigBuilder<T, N> {
+    let laws = [(Feedback::Linear { k: T::one() }, None); 8];
+    Config::<T, N>::builder(
+        T::from_f64(1e-3),
+        &laws[..N - 1],
+        Constraint::Longitudinal {
+            eps: T::from_f64(0.1),
+        },
+        T::from_f64(5.0),
+    )
+    .differentiator(Some(HighGain::paper()))
+}
+
+fn rejected<T: Real, const N: usize>(b: famcc_core::ConfigBuilder<T, N>) -> &'static str {
+    b.build().unwrap_err().parameter
+}
+
+/// Configurations whose first step could not succeed for a moderate input
+/// are rejected, naming the parameter (the issue's list, in both types).
+#[test]
+fn configs_that_cannot_run_are_rejected_by_name() {
+    fn check<T: Real>(huge: f64, tiny: f64) {
+        let f = T::from_f64;
+        let mu = HighGain::new(f(tiny), [f(4.0), f(4.0)], Discretization::Exact);
+        assert_eq!(rejected(lomc::<T, 2>().differentiator(Some(mu))), "mu");
+        assert_eq!(rejected(lomc::<T, 2>().k_u(f(huge))), "k_u");
+        assert_eq!(rejected(lomc::<T, 2>().k0(f(huge))), "k0");
+        assert_eq!(rejected(lomc::<T, 2>().dt(f(tiny))), "dt");
+        assert_eq!(rejected(lomc::<T, 2>().settle_time(f(huge))), "settle_time");
+        let ft = Feedback::FixedTime {
+            alpha: f(huge),
+            p: f(0.5),
+            beta: f(1.0),
+            q: f(2.0),
+        };
+        let b = Config::<T, 2>::builder(
+            f(1e-3),
+            &[(ft, None)],
+            Constraint::Longitudinal { eps: f(0.1) },
+            f(5.0),
+        );
+        assert_eq!(rejected(b), "alpha");
+        for (skew, name) in [
+            (Skew::smooth(f(huge), f(0.1)), "eps_s"),
+            (Skew::nonsingular(f(0.1), f(0.1), f(huge)), "k_pp"),
+        ] {
+            let b = Config::<T, 2>::builder(
+                f(1e-3),
+                &[(Feedback::FiniteTime { k: f(1.0), p: f(0.5) }, Some(skew))],
+                Constraint::Longitudinal { eps: f(0.1) },
+                f(5.0),
+            );
+            assert_eq!(rejected(b), name);
+        }
+        assert_eq!(
+            rejected(lomc::<T, 2>().constraint(Constraint::Longitudinal { eps: f(huge) })),
+            "eps"
+        );
+        let mut d = [T::zero(); 6];
+        d[2] = f(huge);
+        assert_eq!(
+            rejected(lomc::<T, 4>().initial_derivatives(d[..4].try_into().ok())),
+            "initial_derivatives"
+        );
+        assert_eq!(
+            rejected(lomc::<T, 5>().initial_derivatives(d[..5].try_into().ok())),
+            "initial_derivatives"
+        );
+        assert_eq!(
+            rejected(lomc::<T, 6>().initial_derivatives(Some(d))),
+            "initial_derivatives"
+        );
+    }
+    check::<f64>(1e308, 1e-300);
+    check::<f32>(3e38, 1e-38);
+}

@@ -1,0 +1,75 @@
+//! Numeric arguments of the constructors: a real number or an integer, never
+//! a bool (`order=True` is a mistake, not 1), and a `TypeError` whose message
+//! names the argument.
+//!
+//! pyo3 attributes an argument's extraction error with a note ("while
+//! processing 'dt'"); the errors raised here are `famcc._arguments.
+//! ArgumentTypeError`s, which move that name into the message itself:
+//! `argument 'dt': must be a real number, not bool`.
+
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyString};
+use pyo3::Borrowed;
+
+/// A real-number argument (a float or an int, not a bool).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Num(pub f64);
+
+/// An integer argument (not a bool).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Int(pub i64);
+
+/// A text argument (a `str`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Text(pub String);
+
+/// The error for a wrong argument type, as `famcc._arguments.ArgumentTypeError`
+/// (a `TypeError`; a plain `TypeError` if that module cannot be imported).
+fn type_error(py: Python<'_>, what: &str, obj: Borrowed<'_, '_, PyAny>) -> PyErr {
+    let got = obj
+        .get_type()
+        .name()
+        .map(|n| n.to_string())
+        .unwrap_or_else(|_| String::from("?"));
+    let msg = format!("must be {what}, not {got}");
+    py.import("famcc._arguments")
+        .and_then(|m| m.getattr("ArgumentTypeError"))
+        .and_then(|cls| cls.call1((msg.clone(),)))
+        .map(PyErr::from_value)
+        .unwrap_or_else(|_| PyTypeError::new_err(msg))
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Num {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if obj.is_instance_of::<PyBool>() {
+            return Err(type_error(obj.py(), "a real number", obj));
+        }
+        obj.extract::<f64>()
+            .map(Num)
+            .map_err(|_| type_error(obj.py(), "a real number", obj))
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Int {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if obj.is_instance_of::<PyBool>() {
+            return Err(type_error(obj.py(), "an integer", obj));
+        }
+        obj.extract::<i64>()
+            .map(Int)
+            .map_err(|_| type_error(obj.py(), "an integer", obj))
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Text {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        match obj.cast::<PyString>() {
+            Ok(s) => Ok(Text(s.to_string())),
+            Err(_) => Err(type_error(obj.py(), "a str", obj)),
+        }
+    }
+}
