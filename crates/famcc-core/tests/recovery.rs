@@ -89,8 +89,8 @@ impl<const N: usize, F: Fn(f64, &[f64; N], f64) -> [f64; N]> common::TimePlant<N
 fn one_outlier_costs_one_sample_on_the_papers_examples() {
     use common::TimePlant;
     use famcc_paper::designs;
-    let p2 = Second(Variant::Code);
-    let p3 = Third(Variant::Code);
+    let p2 = Second::new(Variant::Code);
+    let p3 = Third::new(Variant::Code);
     let f2 = |t: f64, x: &[f64; 2], u: f64| p2.rate(t, x, u);
     let f3 = |t: f64, x: &[f64; 3], u: f64| p3.rate(t, x, u);
     let runs = [
