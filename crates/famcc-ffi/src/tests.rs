@@ -480,7 +480,7 @@ fn first<T: Real, const N: usize>(x: [f64; 3]) -> [T; N] {
 const A2: [f64; 3] = [4.0, 4.0, 0.0];
 const A3: [f64; 3] = [4.0, 6.0, 4.0];
 
-fn core_config<T: Real, const N: usize>(v: &Case) -> Config<T, N> {
+fn core_config<T: Real, const N: usize>(v: &Case) -> Result<Config<T, N>, famcc_core::ConfigError> {
     let f = T::from_f64;
     let laws: std::vec::Vec<_> = v.stages[..N - 1]
         .iter()
@@ -519,7 +519,7 @@ fn core_config<T: Real, const N: usize>(v: &Case) -> Config<T, N> {
         Flex::On(r) => b.rho_e(Some(f(r))),
         Flex::Auto => b,
     };
-    b.build().unwrap()
+    b.build()
 }
 
 fn c_law<T: Real>(l: Law) -> FamccFeedback<T> {
@@ -831,6 +831,7 @@ macro_rules! variants_match {
         fn $name() {
             let input = wild_signal::<$t>(700);
             let mut stats = [0usize; 3]; // expanded, clamped, rational
+            let mut rejected = 0usize;
             for (i, (order, v)) in variants().into_iter().enumerate() {
                 if order != $n {
                     continue;
@@ -841,10 +842,25 @@ macro_rules! variants_match {
                 let p = storage.as_mut_ptr();
                 let mut err = MaybeUninit::<FamccError>::zeroed();
                 let status = unsafe { $init(p, &cfg, err.as_mut_ptr()) };
+                // The C ABI accepts exactly what the core's builder accepts
+                // (e.g. the validation probe rejects some f32 variants).
+                let core_cfg = match core_config::<$t, $n>(&v) {
+                    Ok(c) => c,
+                    Err(e) => {
+                        assert_eq!(status, FamccStatus::InvalidConfig, "{what}: {e:?}");
+                        let got = unsafe { err.assume_init() };
+                        let name: std::vec::Vec<u8> = got.parameter[..e.parameter.len()]
+                            .iter()
+                            .map(|&c| c as u8)
+                            .collect();
+                        assert_eq!(name, e.parameter.as_bytes(), "{what}");
+                        rejected += 1;
+                        continue;
+                    }
+                };
                 assert_eq!(status, FamccStatus::Ok, "{what}: {:?}", unsafe {
                     err.assume_init()
                 });
-                let core_cfg = core_config::<$t, $n>(&v);
                 // The C ABI builds exactly this configuration.
                 assert_eq!(
                     convert::to_config::<$t, $n>(&cfg).unwrap(),
@@ -891,7 +907,13 @@ macro_rules! variants_match {
                     }
                 }
             }
-            // The table exercises the flexible boundary, the clamp and both maps.
+            // Most of the table runs; the flexible boundary, the clamp and
+            // both maps are exercised.
+            let total = variants().iter().filter(|(o, _)| *o == $n).count();
+            assert!(
+                rejected * 10 <= total,
+                "{rejected} of {total} variants rejected"
+            );
             assert!(
                 stats.iter().all(|s| *s > 0),
                 "expanded, clamped, rational: {stats:?}"
