@@ -241,7 +241,9 @@ def test_copies_are_independent():
 def test_state_layout_and_reset():
     ctrl = example1()
     fresh = ctrl.state()
-    assert fresh.dtype == np.float64 and fresh.shape == (len(famcc._core.STATE_FIELDS) + ctrl.order,)
+    assert fresh.dtype == np.float64 and fresh.shape == (
+        len(famcc._core.STATE_FIELDS) + ctrl.order,
+    )
     assert fresh[0] == 0.0 and fresh[2] == 0.0  # not started, k = 0
     v = ctrl.step(-1.0)
     s = ctrl.state()

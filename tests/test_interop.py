@@ -30,7 +30,11 @@ def _errors(n: int, seed: int = 1) -> np.ndarray:
 def test_response_equals_stepping_directly(ctrl):
     sys_ = to_nlsys(ctrl)
     assert sys_.dt == ctrl.dt
-    assert (sys_.ninputs, sys_.noutputs, sys_.nstates) == (1, 1, len(famcc._core.STATE_FIELDS) + ctrl.order)
+    assert (sys_.ninputs, sys_.noutputs, sys_.nstates) == (
+        1,
+        1,
+        len(famcc._core.STATE_FIELDS) + ctrl.order,
+    )
     assert sys_.input_labels == ["e"] and sys_.output_labels == ["v"]
     n = 400
     e = _errors(n)
