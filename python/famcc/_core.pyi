@@ -33,6 +33,7 @@ __all__ = [
     "_CallFloor",
     "__version__",
     "_controller_from_state",
+    "design_rules",
     "finite_time",
     "fixed_time",
     "manifold",
