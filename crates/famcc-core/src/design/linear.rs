@@ -7,7 +7,8 @@
 //! the estimate built from the samples before the current one, as
 //! `Controller::step` does (docs/design.md §3.2).
 
-use super::{manifold, Design, MAX_ORDER};
+use super::rules::manifold;
+use super::{Design, MAX_ORDER};
 use crate::differentiator::HighGain;
 use crate::error::ConfigError;
 use num_traits::Float as F;
