@@ -72,7 +72,10 @@ pub mod transition;
 
 pub use config::{Config, ConfigBuilder};
 pub use constraint::Constraint;
-pub use controller::{Controller, Diagnostics, Snapshot, PROBE_ERRORS, RECOVERY_SAMPLES, SNAPSHOT_FIELDS};
+pub use controller::{
+    probe_error, probe_errors, Controller, Diagnostics, Snapshot, PROBE_COUNT, PROBE_LIMIT, PROBE_PER_DECADE,
+    RECOVERY_SAMPLES, SNAPSHOT_FIELDS,
+};
 pub use differentiator::{DiscreteHgd, Discretization, HighGain};
 pub use envelope::{Envelope, Latch};
 pub use error::{ConfigError, StepError};

@@ -238,3 +238,85 @@ fn configs_that_cannot_run_are_rejected_by_name() {
     check::<f64>(1e308, 1e-300);
     check::<f32>(3e38, 1e-38);
 }
+
+/// A law that overflows in a band of moderate errors and not at the ends
+/// of the range: Moulay's exponent tends to `lambda/mu` (about 103 here),
+/// composed with a fixed-time and two variable-exponent stages. Every step
+/// after the first overflowed for a constant error between about 17 and 600,
+/// while 0, 1 and ±1e3 stepped fine. The probe's grid of moderate errors
+/// must reject it (found by an adversarial run of random configurations).
+#[test]
+fn a_law_that_overflows_inside_the_moderate_range_is_rejected() {
+    let laws = [
+        (
+            Feedback::MoulayDiscontinuous {
+                beta: 0.7696,
+                lambda: 1.2175,
+                mu: 0.011832,
+            },
+            Some(Skew::nonsingular(0.0074166, 0.0032432, 1.86935)),
+        ),
+        (
+            Feedback::FixedTime {
+                alpha: 0.83272,
+                p: 0.52365,
+                beta: 1.03218,
+                q: 2.25478,
+            },
+            Some(Skew::nonsingular(1.14147, 0.62555, 1.4085)),
+        ),
+        (
+            Feedback::VariableExponent {
+                k: 5.75849,
+                r_b: 0.56693,
+                r_1: 1.3642,
+                r_t: 2.94366,
+            },
+            Some(Skew::nonsingular(0.77806, 0.32459, 0.28781)),
+        ),
+        (
+            Feedback::VariableExponent {
+                k: 3.31708,
+                r_b: 0.23381,
+                r_1: 1.22919,
+                r_t: 2.88891,
+            },
+            Some(Skew::smooth(0.048194, 0.031738)),
+        ),
+    ];
+    let b = Config::<f64, 5>::builder(1e-3, &laws, Constraint::Lateral { eps: 0.14859 }, 12.92)
+        .settle_time(0.6676)
+        .rho_e(None)
+        .differentiator(Some(HighGain::new(
+            0.16688,
+            [5.0, 10.0, 10.0, 5.0, 1.0],
+            Discretization::Tustin,
+        )));
+    // (Before the grid, the probe's four errors 0, 1, ±1e3 accepted it.)
+    let err = b.build().unwrap_err();
+    assert!(["mu", "feedback"].contains(&err.parameter), "{err:?}");
+}
+
+/// The probe's grid: zero and both signs of 49 magnitudes from 1e-3 to 1e3,
+/// 8 a decade, each a constant ratio from the last.
+#[test]
+fn the_probe_grid_spans_the_moderate_range() {
+    use famcc_core::{probe_error, probe_errors, PROBE_COUNT, PROBE_LIMIT, PROBE_PER_DECADE};
+    let all: Vec<f64> = probe_errors().collect();
+    assert_eq!(all.len(), PROBE_COUNT);
+    assert_eq!(all.iter().filter(|e| **e == 0.0).count(), 1);
+    let pos: Vec<f64> = all.iter().copied().filter(|e| *e > 0.0).collect();
+    assert_eq!(pos.len(), 6 * PROBE_PER_DECADE + 1);
+    assert!((pos[0] - 1e-3).abs() < 1e-18 && pos[pos.len() - 1] == PROBE_LIMIT);
+    let ratio = 10f64.powf(1.0 / PROBE_PER_DECADE as f64);
+    for w in pos.windows(2) {
+        assert!((w[1] / w[0] - ratio).abs() < 1e-9, "{w:?}");
+    }
+    for (i, e) in all.iter().enumerate() {
+        assert_eq!(*e, probe_error(i));
+        assert!(e.abs() <= PROBE_LIMIT);
+        if *e > 0.0 {
+            assert!(all.contains(&-e));
+        }
+    }
+}

@@ -54,7 +54,7 @@ mod steps;
 
 pub use diagnostics::Diagnostics;
 pub(crate) use probe::probe;
-pub use probe::PROBE_ERRORS;
+pub use probe::{probe_error, probe_errors, PROBE_COUNT, PROBE_LIMIT, PROBE_PER_DECADE};
 pub use recover::RECOVERY_SAMPLES;
 pub use snapshot::{Snapshot, SNAPSHOT_FIELDS};
 pub use start::MAX_WIDENING;

@@ -3,7 +3,10 @@
 //! configuration fails on its first sample and the recovery rule
 //! (recover.rs) always has an estimate to restart from.
 //!
-//! For each probe error `e` in [`PROBE_ERRORS`] a fresh controller takes
+//! For each probe error `e` of [`probe_errors`] (zero, and both signs of
+//! [`PROBE_PER_DECADE`] magnitudes a decade from `1e-3` to [`PROBE_LIMIT`]:
+//! a law can overflow in a band of moderate errors and not at its ends, e.g.
+//! Moulay's exponent `lambda/mu` of order 100) a fresh controller takes
 //! the first step (the latch), a second step (the latched envelopes and the
 //! advanced estimate, i.e. the estimate the recovery rule restarts from),
 //! and a third with the envelopes at their final widths after `T_s`, all on
@@ -20,8 +23,51 @@ use super::recover::initial_estimate;
 use super::Controller;
 use crate::{differentiator, Config, ConfigError, Real};
 
-/// The errors the probe steps with (`|e| <= 1e3`: "moderate").
-pub const PROBE_ERRORS: [f64; 4] = [0.0, 1.0, 1e3, -1e3];
+/// The largest probe error: `|e| <= 1e3` is "moderate".
+pub const PROBE_LIMIT: f64 = 1e3;
+
+/// Probe magnitudes per decade (from `1e-3` to [`PROBE_LIMIT`]).
+pub const PROBE_PER_DECADE: usize = 8;
+
+/// The number of probe errors: zero and `±m` for `6 PROBE_PER_DECADE + 1`
+/// magnitudes `m`.
+pub const PROBE_COUNT: usize = 2 * (6 * PROBE_PER_DECADE + 1) + 1;
+
+/// The `i`-th probe error (`i < PROBE_COUNT`): `0`, then `+m_j`, `-m_j` for
+/// `m_j = 1e-3 · 10^(j / PROBE_PER_DECADE)`, `j = 0, ..., 6 PROBE_PER_DECADE`
+/// (the last is exactly [`PROBE_LIMIT`]).
+///
+/// ```
+/// use famcc_core::{probe_error, PROBE_COUNT, PROBE_LIMIT};
+/// assert_eq!(probe_error(0), 0.0);
+/// assert_eq!(probe_error(PROBE_COUNT - 2), PROBE_LIMIT);
+/// assert_eq!(probe_error(PROBE_COUNT - 1), -PROBE_LIMIT);
+/// assert!((probe_error(1) - 1e-3).abs() < 1e-18);
+/// ```
+pub fn probe_error(i: usize) -> f64 {
+    /// `10^(1/8)`.
+    const STEP: f64 = 1.333_521_432_163_324;
+    if i == 0 || i >= PROBE_COUNT {
+        return 0.0;
+    }
+    let j = (i - 1) / 2;
+    let last = 6 * PROBE_PER_DECADE;
+    let m = if j >= last {
+        PROBE_LIMIT
+    } else {
+        (0..j).fold(1e-3, |m, _| m * STEP)
+    };
+    if i % 2 == 1 {
+        m
+    } else {
+        -m
+    }
+}
+
+/// All probe errors, in the order of [`probe_error`].
+pub fn probe_errors() -> impl Iterator<Item = f64> {
+    (0..PROBE_COUNT).map(probe_error)
+}
 
 /// Checks that the first steps of `c` succeed for every probe error.
 pub(crate) fn probe<T: Real, const N: usize>(c: &Config<T, N>) -> Result<(), ConfigError> {
@@ -64,7 +110,7 @@ pub(crate) fn probe<T: Real, const N: usize>(c: &Config<T, N>) -> Result<(), Con
 /// `output` and the configuration allows it, the measured vector otherwise.
 fn runs<T: Real, const N: usize>(c: &Config<T, N>, output: bool) -> bool {
     let by_error = output && (c.discretized().is_some() || !differentiator::needed_at(c.plant_order()));
-    PROBE_ERRORS.iter().all(|&e| {
+    probe_errors().all(|e| {
         let e = T::from_f64(e);
         let z = initial_estimate(c, e);
         let mut ctrl = Controller::new(*c);
