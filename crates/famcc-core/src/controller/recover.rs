@@ -10,7 +10,8 @@
 //! and the estimate *restarts* as at the first step (§3.4), from this
 //! step's sample: `Phi (e, d_2, ..., d_n) + Gamma e` (the integral at 0; the
 //! measured vector for `step_state`). When that is out of range too (the
-//! sample itself is the outlier), it restarts from a zero error instead.
+//! sample itself is the outlier), or when the update overflowed on a sample
+//! beyond the probe's range (`|e| > 1e3`), it restarts from a zero error.
 //!
 //! So the stored estimate is always in range, and a sample that the first
 //! step could use (validation guarantees that for `|e| <= 1e3`, §3.9) makes
@@ -18,6 +19,7 @@
 //! the second moderate sample returns `Ok` (at most one `Overflow` among
 //! the moderate samples: [`RECOVERY_SAMPLES`]).
 
+use super::probe::PROBE_LIMIT;
 use super::Measured;
 use crate::{Config, DiscreteHgd, Real};
 
@@ -61,9 +63,14 @@ pub(super) fn restarted<T: Real, const N: usize>(
     cause: Cause,
 ) -> [T; N] {
     let zero = Measured::Error(T::zero());
+    // After an update overflow the sample is (or drove) the outlier: the
+    // estimate restarts from a zero error, unless the sample is moderate
+    // (the probe's range, §3.9), where a zero restart could overflow again
+    // on the same moderate sample for good (f32, high differentiator gains)
+    // while the first step's estimate from it is one the probe stepped from.
     let from_sample = match cause {
         Cause::Law => Some(measured),
-        Cause::Update => None,
+        Cause::Update => moderate(measured).then_some(measured),
     };
     for m in from_sample.into_iter().chain([&zero]) {
         let (seed, e) = seed(c, m);
@@ -78,6 +85,15 @@ pub(super) fn restarted<T: Real, const N: usize>(
     // Unreachable for a validated configuration (the zero error's estimate
     // is in range, §3.9); zeros are in range in any case.
     [T::zero(); N]
+}
+
+/// True when the measurement lies in the probe's range (`|.| <= PROBE_LIMIT`).
+fn moderate<T: Real, const N: usize>(m: &Measured<T, N>) -> bool {
+    let limit = T::from_f64(PROBE_LIMIT);
+    match m {
+        Measured::Error(e) => e.abs() <= limit,
+        Measured::State(z) => z.iter().all(|v| v.abs() <= limit),
+    }
 }
 
 /// The first step's estimate for a measurement, with the integral at 0,
