@@ -2,6 +2,7 @@
 //! where it has a closed form.
 
 use famcc_core::design::{check, design, Check, Level, Requirements, Rule};
+use famcc_core::HighGain;
 
 fn finding(checks: &[Check], rule: Rule) -> Check {
     *checks.iter().find(|c| c.rule == rule).expect("finding present")
@@ -170,4 +171,54 @@ fn requirements_are_validated_by_name() {
         }),
         "integral"
     );
+}
+
+/// The noise finding's number against an independent computation: the
+/// steady covariance of the sampled differentiator driven by white noise on
+/// `e`, by plain iteration `P <- Phi P Phi' + Gamma Gamma'` (not the
+/// design's doubling), projected on the linear manifold
+/// `s = sum_k C(n-1, k) lambda^(n-1-k) z_(k+1)` of `h_i(s) = -lambda s`.
+#[test]
+fn the_noise_ratio_is_the_manifolds_steady_noise_over_the_band() {
+    fn check<const N: usize>() {
+        let mut r = req(N);
+        r.integral = Some(false);
+        r.noise_std = 2e-4;
+        let d = design(&r).unwrap();
+        let mut a = [0.0; N];
+        a.copy_from_slice(&d.a[..N]);
+        let hgd = HighGain::new(d.mu, a, d.discretization).discretize(r.dt).unwrap();
+        let mut p = [[0.0f64; N]; N];
+        for _ in 0..200_000 {
+            let mut next = [[0.0f64; N]; N];
+            for i in 0..N {
+                for j in 0..N {
+                    let mut acc = hgd.gamma[i] * hgd.gamma[j];
+                    for k in 0..N {
+                        for l in 0..N {
+                            acc += hgd.phi[i][k] * p[k][l] * hgd.phi[j][l];
+                        }
+                    }
+                    next[i][j] = acc;
+                }
+            }
+            p = next;
+        }
+        let binom = |n: usize, k: usize| (0..k).fold(1.0, |b, i| b * (n - i) as f64 / (i + 1) as f64);
+        let c: Vec<f64> = (0..N)
+            .map(|k| binom(N - 1, k) * d.lambda.powi((N - 1 - k) as i32))
+            .collect();
+        let var: f64 = (0..N)
+            .flat_map(|i| (0..N).map(move |j| (i, j)))
+            .map(|(i, j)| c[i] * c[j] * p[i][j])
+            .sum();
+        let want = r.noise_std * var.sqrt() / d.eps_s;
+        let got = finding(d.checks(), Rule::Noise).value;
+        assert!(
+            (got - want).abs() <= 1e-6 * want,
+            "order {N}: noise ratio {got} vs {want}"
+        );
+    }
+    check::<2>();
+    check::<3>();
 }
