@@ -69,9 +69,10 @@ all_tests=(--cargo-arg=--lib --cargo-arg=--tests)
 # The slice: the unit tests and the integration tests that check values
 # (step() by hand and from the authors' functions, the properties, the
 # differentiator, the latch), the measured closed-loop outcomes, the design
-# rules, the options beyond the paper and the clamp count.
+# rules, the options beyond the paper, the clamp count and the recovery and
+# validation rules.
 slice_tests=(--cargo-arg=--lib)
-for t in step_values golden properties differentiator latch closed_loop_outcomes design options no_flexible_clamp; do
+for t in step_values golden properties differentiator latch closed_loop_outcomes design options no_flexible_clamp recovery; do
     slice_tests+=("--cargo-arg=--test=$t")
 done
 

@@ -222,3 +222,24 @@ fn the_noise_ratio_is_the_manifolds_steady_noise_over_the_band() {
     check::<2>();
     check::<3>();
 }
+
+/// `k_u` holds the held input at `xi = XI_HOLD`, with a floor of 5 % of the
+/// input's half-range: with a negligible held input it scales with the
+/// range (`hi - lo`), not with where the range sits; a large held input
+/// sets it alone.
+#[test]
+fn k_u_follows_the_held_input_with_a_floor_set_by_the_input_range() {
+    let k_u = |lo: f64, hi: f64, hold: f64| {
+        let r = Requirements::new(2, 1e-3, (lo, hi), 0.01, 1.0, hold);
+        design(&r).unwrap().k_u
+    };
+    let (narrow, wide) = (k_u(-5.0, 5.0, 1e-6), k_u(-10.0, 10.0, 1e-6));
+    assert!((wide / narrow - 2.0).abs() < 1e-12, "{narrow} {wide}");
+    assert!((k_u(0.0, 10.0, 1e-6) / narrow - 1.0).abs() < 1e-12);
+    let atanh_half = 0.5 * 3f64.ln();
+    assert!(
+        (narrow - 0.05 * 5.0 / (2.0 * atanh_half)).abs() < 1e-12,
+        "{narrow}"
+    );
+    assert!((k_u(-5.0, 5.0, 3.0) - 3.0 / (2.0 * atanh_half)).abs() < 1e-12);
+}
