@@ -40,29 +40,26 @@ fn type_error(py: Python<'_>, what: &str, obj: Borrowed<'_, '_, PyAny>) -> PyErr
         .unwrap_or_else(|_| PyTypeError::new_err(msg))
 }
 
-impl<'a, 'py> FromPyObject<'a, 'py> for Num {
-    type Error = PyErr;
-    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        if obj.is_instance_of::<PyBool>() {
-            return Err(type_error(obj.py(), "a real number", obj));
+/// `FromPyObject` for a newtype over a number: bool is refused, as is
+/// anything that does not extract to the inner type.
+macro_rules! number_newtype {
+    ($name:ident, $inner:ty, $what:literal) => {
+        impl<'a, 'py> FromPyObject<'a, 'py> for $name {
+            type Error = PyErr;
+            fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+                if obj.is_instance_of::<PyBool>() {
+                    return Err(type_error(obj.py(), $what, obj));
+                }
+                obj.extract::<$inner>()
+                    .map($name)
+                    .map_err(|_| type_error(obj.py(), $what, obj))
+            }
         }
-        obj.extract::<f64>()
-            .map(Num)
-            .map_err(|_| type_error(obj.py(), "a real number", obj))
-    }
+    };
 }
 
-impl<'a, 'py> FromPyObject<'a, 'py> for Int {
-    type Error = PyErr;
-    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        if obj.is_instance_of::<PyBool>() {
-            return Err(type_error(obj.py(), "an integer", obj));
-        }
-        obj.extract::<i64>()
-            .map(Int)
-            .map_err(|_| type_error(obj.py(), "an integer", obj))
-    }
-}
+number_newtype!(Num, f64, "a real number");
+number_newtype!(Int, i64, "an integer");
 
 impl<'a, 'py> FromPyObject<'a, 'py> for Text {
     type Error = PyErr;
