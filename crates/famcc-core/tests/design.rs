@@ -179,6 +179,7 @@ fn requirements_are_validated_by_name() {
 /// design's doubling), projected on the linear manifold
 /// `s = sum_k C(n-1, k) lambda^(n-1-k) z_(k+1)` of `h_i(s) = -lambda s`.
 #[test]
+#[allow(clippy::needless_range_loop)] // matrix products read best indexed
 fn the_noise_ratio_is_the_manifolds_steady_noise_over_the_band() {
     fn check<const N: usize>() {
         let mut r = req(N);
