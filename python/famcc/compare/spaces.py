@@ -1,0 +1,167 @@
+"""The compared controllers and their documented parameter ranges (what the tuning searches)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from famcc.compare.conditions import DT
+from famcc.compare.plants import Case
+
+_KINDS = ("famcc", "lmcc", "pid", "adrc")
+
+
+def controllers() -> list[str]:
+    """The compared controllers, famcc first."""
+    return list(_KINDS)
+
+
+@dataclass(frozen=True)
+class Space:
+    """A controller's documented parameter ranges; ``params(u)`` maps the unit cube.
+
+    ``ranges`` maps each name to ``(lo, hi, log)``; ``fixed`` holds the
+    parameters that are not searched (e.g. ADRC's ``b0 = G``); ``default`` is
+    the controller's documented default setting (the paper's design for famcc,
+    the textbook pole placement for the peers), the first candidate the tuning
+    tries.
+    """
+
+    kind: str
+    ranges: dict[str, tuple[float, float, bool]]
+    fixed: dict[str, Any] = field(default_factory=dict)
+    default: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def dims(self) -> int:
+        return len(self.ranges)
+
+    def params(self, u: Sequence[float] | np.ndarray) -> dict[str, Any]:
+        """The parameters at the point ``u`` of ``[0, 1]^dims``."""
+        out = dict(self.fixed)
+        for x, (name, (lo, hi, log)) in zip(u, self.ranges.items()):
+            x = min(max(float(x), 0.0), 1.0)
+            out[name] = lo * (hi / lo) ** x if log else lo + (hi - lo) * x
+        return out
+
+    def unit(self, params: dict[str, float]) -> np.ndarray:
+        """The point of the unit cube of ``params`` (clipped to the ranges)."""
+        out = []
+        for name, (lo, hi, log) in self.ranges.items():
+            v = float(params[name])
+            x = math.log(v / lo) / math.log(hi / lo) if log else (v - lo) / (hi - lo)
+            out.append(min(max(x, 0.0), 1.0))
+        return np.array(out)
+
+
+#: The paper's k_u of examples 1-3 (famcc's default there; 1.5 H elsewhere).
+PAPER_K_U = {"example-1": 5.0, "example-2": 2.0, "example-3": 30.0}
+
+
+def famcc_candidates(
+    plant: Any,
+    dt: float,
+    *,
+    order: int,
+    family: str,
+    band: float,
+    gain: float,
+    hold: float,
+    k_u: float | None = None,
+) -> Space:
+    """famcc's parameter ranges on a plant: the paper's designs, scaled.
+
+    Around the paper's settings (the default: law gain ``k = 1``, ``T_s = 1`` s,
+    ``eps`` = the band, ``mu = 0.01`` s, ``k_u`` the paper's or ``1.5 H``): ``k``
+    (1/s) in [0.3, 10], ``T_s`` in [0.1, 2] s, ``eps`` in [0.2, 1] x band (LaMC;
+    LoMC designs scale theirs with it), ``k_u`` in [0.3, 30] x ``H``, ``mu`` in
+    [1, 30] ms, all log-uniform. ``family`` picks the laws: ``"finite-time"``
+    (LaMC, ``FiniteTime(k, 0.5)``, the paper's example 1 at the default),
+    ``"variable-exponent"`` (LoMC + SSMD, example 2) or ``"rfc"`` (LoMC,
+    ``FixedTime`` stages + NSMD at any order >= 3, example 3). ``plant``, ``dt``
+    and ``gain`` are for the design procedure that will replace these ranges
+    (``famcc.design``); the ranges need only ``hold`` and ``band``.
+    """
+    del plant, dt, gain
+    if family not in ("finite-time", "variable-exponent", "rfc"):
+        raise ValueError(f"family must be finite-time, variable-exponent or rfc, got {family!r}")
+    return Space(
+        "famcc",
+        {
+            "k": (0.3, 10.0, True),
+            "settle_time": (0.1, 2.0, True),
+            "eps": (0.2 * band, band, True),
+            "k_u": (0.3 * hold, 30.0 * hold, True),
+            "mu": (1e-3, 3e-2, True),
+        },
+        {"family": family, "order": order, "band": band},
+        {"k": 1.0, "settle_time": 1.0, "eps": band, "k_u": k_u or 1.5 * hold, "mu": 0.01},
+    )
+
+
+def space(kind: str, case: Case, joint: int = 0) -> Space:
+    """The parameter ranges of controller ``kind`` on ``case`` (joint ``joint``).
+
+    All log-uniform; the default (the first candidate) in brackets.
+
+    * ``famcc``: :func:`famcc_candidates`.
+    * ``lmcc``: ``Linear(k)`` stages, ``k`` in [0.3, 30] 1/s (2); ``eps`` of the
+      LoMC on ``s`` = ``eps_factor`` x band x ``k^(n-1)``, ``eps_factor`` in
+      [0.1, 1] (0.5); ``T_s``, ``k_u``, ``mu`` as famcc's.
+    * ``pid``: with a bandwidth ``w`` in [1, 200] rad/s (10), ``kp = cp w^n / G``,
+      ``kd = cd w^(n-1) / G``, ``ki = ci w^(n+1) / G``; ``cp, cd`` in [0.5, 20]
+      (3), ``ci`` in [0.03, 3] (1): the default places the poles of a double
+      integrator at ``-w``; measurement filter ``tf = ctf / w``, ``ctf`` in
+      [1e-3, 0.3] (0.01).
+    * ``adrc``: ``w_cl`` in [1, 200] rad/s (10), ``k_eso`` in [2, 10] (5), ``b0 = G``.
+    """
+    g, h, n = case.gain[joint], case.hold[joint], case.order
+    if kind == "famcc":
+        return famcc_candidates(
+            None,
+            DT,
+            order=n,
+            family=case.family,
+            band=case.band,
+            gain=g,
+            hold=h,
+            k_u=PAPER_K_U.get(case.name),
+        )
+    if kind == "lmcc":
+        return Space(
+            "lmcc",
+            {
+                "k": (0.3, 30.0, True),
+                "eps_factor": (0.1, 1.0, True),
+                "settle_time": (0.1, 2.0, True),
+                "k_u": (0.3 * h, 30.0 * h, True),
+                "mu": (1e-3, 3e-2, True),
+            },
+            {"order": n, "band": case.band},
+            {"k": 2.0, "eps_factor": 0.5, "settle_time": 1.0, "k_u": 1.5 * h, "mu": 0.01},
+        )
+    if kind == "pid":
+        return Space(
+            "pid",
+            {
+                "w": (1.0, 200.0, True),
+                "cp": (0.5, 20.0, True),
+                "cd": (0.5, 20.0, True),
+                "ci": (0.03, 3.0, True),
+                "ctf": (1e-3, 0.3, True),
+            },
+            {"order": n, "gain": g},
+            {"w": 10.0, "cp": 3.0, "cd": 3.0, "ci": 1.0, "ctf": 0.01},
+        )
+    if kind == "adrc":
+        return Space(
+            "adrc",
+            {"w_cl": (1.0, 200.0, True), "k_eso": (2.0, 10.0, True)},
+            {"order": n, "b0": g},
+            {"w_cl": 10.0, "k_eso": 5.0},
+        )
+    raise ValueError(f"kind must be one of {', '.join(_KINDS)}, got {kind!r}")
