@@ -125,8 +125,15 @@ class Scenario:
         return self.settle_time + self.t_prime
 
     def controller(self, dt: float = 1e-3, **overrides: Any) -> famcc.Controller:
-        """A fresh controller for this scenario at sample period ``dt`` (s)."""
+        """A fresh controller for this scenario at sample period ``dt`` (s).
+
+        Unless ``differentiator`` is given, the differentiator is the one the
+        core's rules pick for ``dt`` (:meth:`famcc.HighGain.for_rate`): the
+        paper's at 1 kHz, a faster ``mu`` with Tustin at slower rates
+        (docs/tuning.md, "Sample rate").
+        """
         kw = dict(self.controller_kwargs)
+        kw["differentiator"] = famcc.HighGain.for_rate(kw["order"], dt)
         kw.update(overrides)
         order = kw.pop("order")
         return famcc.Controller(order, dt, **kw)
@@ -140,7 +147,9 @@ class Scenario:
     ) -> SimResult:
         """Simulates the scenario; returns a :class:`famcc.SimResult`.
 
-        ``overrides`` go to the controller (e.g. ``differentiator=...``);
+        ``overrides`` go to the controller (e.g. ``differentiator=...``; without
+        it the differentiator the core's rules pick for ``dt``, see
+        :meth:`controller`);
         ``substeps`` RK4 steps per sample (default :func:`substeps_for`, so that the
         plant is integrated equally finely at every sample rate).
 

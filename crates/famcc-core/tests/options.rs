@@ -255,11 +255,18 @@ fn the_papers_designs_have_no_lint_findings() {
 #[test]
 fn lint_names_the_parameter_rule_and_suggestion() {
     let linear = [(Feedback::Linear { k: 2.0 }, None); 3];
-    let cfg = Config::<f64, 4>::builder(5e-3, &linear, Constraint::Longitudinal { eps: 1.0 }, 5.0)
-        .differentiator(Some(HighGain::auto()))
-        .rho_e(Some(0.5))
-        .build()
-        .unwrap();
+    // Tustin (the order-4 default) warns only once dt > mu (here dt / mu = 2);
+    // at dt / mu = 0.5 it does not.
+    let tustin = |dt: f64| {
+        Config::<f64, 4>::builder(dt, &linear, Constraint::Longitudinal { eps: 1.0 }, 5.0)
+            .differentiator(Some(HighGain::auto()))
+            .rho_e(Some(0.5))
+            .build()
+            .unwrap()
+    };
+    let mild: Vec<Lint> = tustin(5e-3).lint().iter().map(|f| f.lint).collect();
+    assert_eq!(mild, [Lint::WideMargin, Lint::Peaking]);
+    let cfg = tustin(2e-2);
     let f = cfg.lint();
     let lints: Vec<Lint> = f.iter().map(|f| f.lint).collect();
     assert_eq!(lints, [Lint::CoarseSampling, Lint::WideMargin, Lint::Peaking]);

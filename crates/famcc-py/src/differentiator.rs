@@ -161,6 +161,24 @@ impl HighGain {
         )
     }
 
+    /// famcc's default differentiator for an order and a sample period
+    /// `dt` (s), famcc-core's `HighGain::auto_at`: the paper's at `dt <=
+    /// 1 ms` (up to order 3), a faster `mu` that keeps the loop's delay at
+    /// slower rates (never below `dt`), exact ZOH up to order 3 while `dt <=
+    /// 0.2 mu`, Tustin otherwise.
+    #[staticmethod]
+    fn for_rate(order: usize, dt: f64) -> PyResult<Self> {
+        check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(ConfigError::new_err(format!(
+                "dt must be finite and > 0 (got {dt})"
+            )));
+        }
+        let h = famcc_core::HighGain::<f64, { famcc_core::config::MAX_ORDER }>::auto_at(order, dt);
+        let a = h.a.get(..order).map(<[f64]>::to_vec).unwrap_or_default();
+        Self::new(h.mu, a, DISCRETIZATION.name(h.discretization), None)
+    }
+
     #[getter]
     fn a<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
         PyTuple::new(py, &self.a)

@@ -7,7 +7,7 @@
 //!
 //! | lint | rule |
 //! |---|---|
-//! | [`Lint::CoarseSampling`] | `dt / mu <= 0.2` (the differentiator needs `mu >= 5 dt`; famcc's designs use `10 dt`) |
+//! | [`Lint::CoarseSampling`] | `dt / mu <= 0.2` (the differentiator needs `mu >= 5 dt`; famcc's designs use `10 dt`); with Tustin `dt / mu <= 1` (its poles `(1 - dt/mu) / (1 + dt/mu)` stay >= 0) |
 //! | [`Lint::Chatter`] | the last stage's law, if it has an infinite slope at 0 (`p < 1` without NSMD), chatters by less than 1 % of the accuracy of `s_(n-1)` |
 //! | [`Lint::WideMargin`] | `rho_e <= 0.1 eps` (smallest final width) |
 //! | [`Lint::Peaking`] | estimate limits set when the differentiator's order is `>= 4` |
@@ -47,8 +47,10 @@ use crate::{Constraint, Discretization, Feedback, Real, SkewedLaw};
 /// The number of lints: the capacity of [`Findings`].
 pub const LINT_COUNT: usize = 5;
 
-/// Largest `dt / mu` that does not warn.
-const MAX_DT_PER_MU: f64 = 0.2;
+/// Largest `dt / mu` that does not warn (exact and Euler discretizations).
+const MAX_DT_PER_MU: f64 = crate::differentiator::EXACT_DT_PER_MU;
+/// Largest `dt / mu` that does not warn with Tustin (its poles stay >= 0).
+const MAX_DT_PER_MU_TUSTIN: f64 = 1.0;
 /// Largest chatter amplitude, as a fraction of the accuracy of `s_(n-1)`.
 const CHATTER_FRACTION: f64 = 0.01;
 /// Largest `rho_e / eps` that does not warn.
@@ -238,15 +240,23 @@ impl<T: Real, const N: usize> Config<T, N> {
         let order = self.plant_order();
         let hgd = self.differentiator();
         let mu = hgd.map(|h| h.mu.to_f64_lossless());
-        if let Some(mu) = mu {
-            if dt / mu > MAX_DT_PER_MU {
+        if let (Some(mu), Some(h)) = (mu, hgd) {
+            // Tustin maps the poles -2/mu to (1 - dt/mu) / (1 + dt/mu): it
+            // rings only once dt > mu (famcc's rate rule picks it from dt / mu
+            // > 0.2 on, differentiator::auto_discretization_at).
+            let (limit, rule) = if h.discretization == Discretization::Tustin {
+                (MAX_DT_PER_MU_TUSTIN, "dt / mu <= 1 (Tustin)")
+            } else {
+                (MAX_DT_PER_MU, "dt / mu <= 0.2")
+            };
+            if dt / mu > limit {
                 out.push(Finding {
                     lint: Lint::CoarseSampling,
                     parameter: "dt",
                     stage: None,
                     risk: "the sample period is coarse for the differentiator's time constant mu \
                            (raise mu to 10 dt or sample faster)",
-                    rule: "dt / mu <= 0.2",
+                    rule,
                     value: dt / mu,
                     suggestion: Suggestion::Value(mu / 10.0),
                 });

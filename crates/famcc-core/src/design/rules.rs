@@ -5,7 +5,7 @@ use super::{
     check, linear, Check, Design, Level, Requirements, Rule, ESTIMATE_FACTOR, ESTIMATE_ORDER, MAX_CHECKS,
     MAX_ORDER, MU_PER_SETTLE, RADIUS_WARN, RATIO_ORDER, XI_HOLD,
 };
-use crate::differentiator::Discretization;
+use crate::differentiator::auto_discretization_at;
 use crate::error::ConfigError;
 use num_traits::Float as F;
 
@@ -31,6 +31,7 @@ fn time_scales(d: &mut Design, req: &Requirements, ratio: f64, k_u: f64) -> Resu
     let (lo, hi) = req.u_limits;
     let mut noise_ratio = 0.0;
     for _ in 0..200 {
+        d.discretization = auto_discretization_at(n, req.dt, d.mu);
         d.loop_rate = F::min(2.0 / d.mu / ratio, 0.4 / req.dt);
         d.lambda = if n_law > 1 { d.loop_rate / ratio } else { 0.0 };
         d.eps_s = match req.gain {
@@ -67,11 +68,9 @@ pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
     for (k, ak) in a.iter_mut().enumerate().take(n) {
         *ak = binomial(n, k + 1) * F::powi(2.0, (k + 1) as i32);
     }
-    let discretization = if n <= 3 {
-        Discretization::Exact
-    } else {
-        Discretization::Tustin
-    };
+    // Exact ZOH up to order 3 while dt <= 0.2 mu, Tustin otherwise (reset
+    // whenever mu changes, in `time_scales`).
+    let discretization = auto_discretization_at(n, req.dt, req.mu_per_dt * req.dt);
     // The phase model counts n_law - 1 stage lags and n_law differentiator lags;
     // beyond a law of order 3 that overcounts (measured: flexible joint and
     // integrator chains of orders 4-6 settle only with the order-3 ratio, and

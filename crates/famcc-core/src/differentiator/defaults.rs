@@ -58,6 +58,85 @@ pub const fn auto_discretization(order: usize) -> Discretization {
     }
 }
 
+/// The ratio `dt / mu` up to which [`auto_discretization_at`] keeps the exact
+/// zero-order hold (at order <= 3): the lint's "dt too coarse for mu" bound
+/// (docs/design.md §3.8). Beyond it the held sample is a poor model of the
+/// measurement and Tustin, which maps the poles `-a/mu` to
+/// `(1 - a dt / 2 mu) / (1 + a dt / 2 mu)`, closes the paper's loops where
+/// the exact hold does not (measured at 200 Hz, docs/tuning.md).
+pub const EXACT_DT_PER_MU: f64 = 0.2;
+
+/// The delay the sampled law adds to the continuous one, in sample periods:
+/// one period because the output at sample `k` uses the estimate built from
+/// the samples up to `k - 1` (docs/design.md §3.2), and half a period of
+/// zero-order hold.
+pub const SAMPLE_DELAY: f64 = 1.5;
+
+/// The discretization famcc picks for a differentiator of order `order` and
+/// time constant `mu` (s) sampled every `dt` (s): from order 4 on
+/// [`Discretization::Tustin`] (the exact hold aliases there, §7.2 of
+/// docs/design.md); up to order 3 [`Discretization::Exact`] while `dt <=
+/// EXACT_DT_PER_MU * mu`, Tustin for `EXACT_DT_PER_MU * mu < dt <= mu`,
+/// and the exact hold again beyond (`dt > mu`, where Tustin's poles
+/// `(1 - dt/mu) / (1 + dt/mu)` turn negative and ring; measured on the
+/// paper's example 1 at 50 Hz: exact settles, Tustin never does).
+/// `famcc_core::design` and [`HighGain::auto_at`] both use it.
+///
+/// ```
+/// use famcc_core::differentiator::auto_discretization_at;
+/// use famcc_core::Discretization;
+/// assert_eq!(auto_discretization_at(3, 1e-3, 0.01), Discretization::Exact);
+/// assert_eq!(auto_discretization_at(3, 5e-3, 0.01), Discretization::Tustin);
+/// assert_eq!(auto_discretization_at(3, 2e-2, 0.01), Discretization::Exact);
+/// assert_eq!(auto_discretization_at(4, 1e-3, 0.01), Discretization::Tustin);
+/// ```
+pub fn auto_discretization_at(order: usize, dt: f64, mu: f64) -> Discretization {
+    if order <= 3 && (dt <= EXACT_DT_PER_MU * mu || dt > mu) {
+        Discretization::Exact
+    } else {
+        Discretization::Tustin
+    }
+}
+
+/// The time constant of famcc's default differentiator at order `order`
+/// sampled every `dt` (s), for a loop designed around the paper's
+/// [`PAPER_MU`] at `dt_ref = PAPER_MU / 10` (1 kHz).
+///
+/// The loop's gains fix its crossover, so what the differentiator may cost
+/// is a delay: about `order mu / 2` (`order` poles at `-2/mu`) plus
+/// [`SAMPLE_DELAY`] `dt` from the sampling. A slower sample rate keeps that
+/// total by a faster differentiator,
+/// `mu = PAPER_MU - (2 SAMPLE_DELAY / order) (dt - dt_ref)`, never slower
+/// than [`PAPER_MU`] (so `mu = PAPER_MU` for `dt <= dt_ref`) and never
+/// below `min(dt, PAPER_MU)` (below `dt` Tustin maps the poles to negative
+/// reals: ringing; at `dt > PAPER_MU` the paper's `mu` with the exact hold).
+/// Measurement noise asks for the opposite (a slower `mu`): that trade is
+/// `famcc_core::design`'s, which sets the loop from `mu`.
+///
+/// ```
+/// use famcc_core::differentiator::{auto_mu, PAPER_MU};
+/// assert_eq!(auto_mu(3, 1e-3), PAPER_MU);
+/// assert_eq!(auto_mu(2, 1e-4), PAPER_MU);
+/// assert!((auto_mu(3, 5e-3) - 0.006).abs() < 1e-12);
+/// assert!((auto_mu(2, 5e-3) - 0.005).abs() < 1e-12); // 0.004, raised to dt
+/// assert_eq!(auto_mu(2, 2e-2), PAPER_MU); // 50 Hz: the paper's (exact hold)
+/// ```
+pub fn auto_mu(order: usize, dt: f64) -> f64 {
+    let dt_ref = 0.1 * PAPER_MU;
+    let order = order.max(1) as f64;
+    let late = if dt > dt_ref { dt - dt_ref } else { 0.0 };
+    if late == 0.0 {
+        return PAPER_MU;
+    }
+    let mu = PAPER_MU - 2.0 * SAMPLE_DELAY / order * late;
+    let floor = if dt < PAPER_MU { dt } else { PAPER_MU };
+    if mu > floor {
+        mu
+    } else {
+        floor
+    }
+}
+
 impl<T: Real, const N: usize> HighGain<T, N> {
     /// The paper's differentiator for order `N`: [`PAPER_MU`], the
     /// coefficients of [`paper_coefficients`], the exact discretization.
@@ -105,5 +184,26 @@ impl<T: Real, const N: usize> HighGain<T, N> {
             paper_coefficients(head);
         }
         Self::new(T::from_f64(PAPER_MU), a, auto_discretization(order))
+    }
+
+    /// famcc's default differentiator of run-time order `order <= N` for the
+    /// sample period `dt` (s): the coefficients of [`HighGain::auto_for`],
+    /// `mu = `[`auto_mu`]`(order, dt)` and
+    /// [`auto_discretization_at`]`(order, dt, mu)`. At `dt <= 1 ms` it is
+    /// [`HighGain::auto_for`] (the paper's differentiator up to order 3).
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, HighGain};
+    /// assert_eq!(HighGain::<f64, 3>::auto_at(3, 1e-3), HighGain::paper());
+    /// let h = HighGain::<f64, 3>::auto_at(3, 5e-3); // 200 Hz
+    /// assert!((h.mu - 0.006).abs() < 1e-12);
+    /// assert_eq!((h.a, h.discretization), ([4.0, 6.0, 4.0], Discretization::Tustin));
+    /// ```
+    pub fn auto_at(order: usize, dt: f64) -> Self {
+        let mut h = Self::auto_for(order);
+        let mu = auto_mu(order, dt);
+        h.mu = T::from_f64(mu);
+        h.discretization = auto_discretization_at(order, dt, mu);
+        h
     }
 }

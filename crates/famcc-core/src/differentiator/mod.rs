@@ -53,7 +53,10 @@ mod high_gain;
 mod linalg;
 mod recursion;
 
-pub use defaults::{auto_discretization, paper_coefficients, PAPER_MU};
+pub use defaults::{
+    auto_discretization, auto_discretization_at, auto_mu, paper_coefficients, EXACT_DT_PER_MU, PAPER_MU,
+    SAMPLE_DELAY,
+};
 pub use high_gain::{Discretization, HighGain};
 pub use linalg::spectral_radius;
 pub use recursion::DiscreteHgd;
