@@ -167,7 +167,8 @@ impl HighGain {
     /// slower rates (never below `dt`), exact ZOH up to order 3 while `dt <=
     /// 0.2 mu`, Tustin otherwise.
     #[staticmethod]
-    fn for_rate(order: usize, dt: f64) -> PyResult<Self> {
+    fn for_rate(order: usize, dt: Num) -> PyResult<Self> {
+        let dt = dt.0;
         check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
         if !(dt.is_finite() && dt > 0.0) {
             return Err(ConfigError::new_err(format!(
@@ -176,7 +177,12 @@ impl HighGain {
         }
         let h = famcc_core::HighGain::<f64, { famcc_core::config::MAX_ORDER }>::auto_at(order, dt);
         let a = h.a.get(..order).map(<[f64]>::to_vec).unwrap_or_default();
-        Self::new(h.mu, a, DISCRETIZATION.name(h.discretization), None)
+        Self::new(
+            Num(h.mu),
+            a.into_iter().map(Num).collect(),
+            Text(DISCRETIZATION.name(h.discretization).into()),
+            None,
+        )
     }
 
     #[getter]
