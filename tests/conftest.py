@@ -7,7 +7,8 @@ import importlib.util
 
 import pytest
 
-#: Modules of the ``test`` extra (pyproject.toml) that tests import.
+#: Modules of the ``test`` extra (pyproject.toml) that tests import (cosmic_ray: that
+#: scripts/mutants-py.sh, which ./scripts/test.sh runs after pytest, imports).
 REQUIRED = (
     "hypothesis",
     "mypy",
@@ -19,6 +20,7 @@ REQUIRED = (
     "nbclient",
     "ipykernel",
     "pyadrc",
+    "cosmic_ray",
 )
 
 

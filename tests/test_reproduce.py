@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -241,8 +242,13 @@ def test_sweep_small(tmp_path):
     assert plain["max_abs_xi"] == direct.max_abs_xi
     assert plain["ok"] is True
     assert plain["nominal_ok"] is True and plain["performance_ok"] is True
+    assert plain["t_end"] == 2.0 and plain["bound_beyond_horizon"] is True  # T_s + T' = 3 s
+    assert plain["settled_within_bound"] is True  # settled at 1.27 s
     limited = next(r for r in recs if r["limited"])
     assert limited["limits"] == sw.estimate_limits(scenarios.paper("finite-time"))
+    lows = {(low["scenario"], low["configuration"]): low for low in data["lowest_rates"]}
+    assert set(lows) == {("finite-time", "exact"), ("finite-time", "exact + limits")}
+    assert lows[("finite-time", "exact")]["ok_from"] == 500.0
     md = (out / "sweep.md").read_text()
     assert "## Answer" in md and "finite-time" in md
     _assert_png(out / "sweep.png", min_bytes=10_000, min_shape=(400, 800))
@@ -276,11 +282,115 @@ def test_sweep_speaks_only_of_rates_it_ran_and_its_verdicts_can_fail(tmp_path):
     recs = json.loads((out / "sweep.json").read_text())["records"]
     assert {r["rate_hz"] for r in recs} == {100.0, 1000.0}
     by = {(r["scenario"], r["discretization"], r["limited"], r["rate_hz"]): r for r in recs}
-    # Euler at 100 Hz (dt = mu) is unstable: the guarantees fail.
+    # Euler at 100 Hz (dt = mu) is unstable: the guarantees fail, and the stricter two.
     bad = by[("finite-time", "euler", False, 100.0)]
     assert bad["ok"] is False and bad["violations"]
+    assert bad["nominal_ok"] is False and bad["performance_ok"] is False
     # Exact ZOH at 100 Hz keeps the guarantees but saturates 7.5 points more often than
     # at 1 kHz: the performance verdict fails.
     slow = by[("finite-time-saturated", "exact", False, 100.0)]
     assert slow["ok"] is True and slow["performance_ok"] is False
     assert by[("finite-time", "exact", False, 1000.0)]["performance_ok"] is True
+    # Its bounds expand after the start-up, but only while saturated: nominal kept.
+    assert slow["expanded_after_startup"] is True and slow["expanded_without_saturation"] is False
+    assert slow["nominal_ok"] is True
+    # The answer says so, and no passing 100 Hz run has an untested claim.
+    assert "- **At 100 Hz with the performance of the 1000 Hz run kept: no.**" in md
+    assert "- **With the nominal constraint kept: yes, with exact, exact + limits.**" in md
+    assert "Caveat" not in md
+    # The comparison table: a diverged run, and one whose bounds expanded (only while
+    # saturated) that settles as fast but saturates more often.
+    rows = {tuple(c.strip() for c in line.split("|")[1:3]): line for line in md.splitlines()}
+    assert rows[("finite-time", "euler")].endswith("| diverged / 1.27 s | - | - | - | fails |")
+    cells = [c.strip() for c in rows[("finite-time-saturated", "exact")].split("|")[1:-1]]
+    assert re.fullmatch(r"\d\.\d+x / \d\.\d+x", cells[5]), cells  # e.g. 2.1x / 2.35x
+    assert cells[6] == "guarantees + nominal; slower / saturates more"
+
+
+def test_a_sweep_point_too_short_for_its_bound_is_untested_not_settled():
+    rec = sw.run_one("finite-time", "code", 1000.0, "exact", False, t_end=0.5)
+    assert rec["t_end"] == 0.5 and rec["bound"] == 3.0 and rec["bound_beyond_horizon"] is True
+    assert rec["settling_time"] is None and rec["settled_within_bound"] is False
+    # settling cannot be decided in 0.5 s: untested, so the run passes with a caveat
+    assert [v["status"] for v in rec["verdicts"]] == ["untested", "held", "held"]
+    assert rec["ok"] is True and rec["untested"][0].startswith("settling: untested: the bound 3 s")
+    assert 0.0 < rec["runtime_s"] < 60.0
+
+
+def test_the_default_sweep_runs_50_hz_to_10_khz_and_asks_about_200_hz():
+    assert sw.RATES_HZ == (50, 100, 200, 300, 500, 1000, 2000, 5000, 10000)
+    assert sw.question_rate([{"rate_hz": float(r)} for r in sw.RATES_HZ]) == 200.0
+
+
+def test_estimate_limits_are_the_factor_times_the_initial_error_floored_at_one():
+    sc = scenarios.paper("rfc")  # z(0) = (1, -0.41, 4.58): both sides of the floor
+    x0 = np.asarray(sc.plant.x0, dtype=float)
+    y0 = np.asarray(sc.plant.output_derivatives(0.0, x0), dtype=float)
+    z0 = y0 - np.array([0.0, 1.0, 0.0])  # y_d = sin t: (0, 1, 0) at t = 0
+    np.testing.assert_allclose(sw.initial_error(sc), z0, rtol=1e-15)
+    assert abs(z0[1]) < 1.0 < abs(z0[2])
+    for factor in (2.0, 4.0):
+        expected = [factor * max(abs(v), 1.0) for v in z0]
+        assert sw.estimate_limits(sc, factor) == pytest.approx(expected, rel=1e-15)
+    assert sw.estimate_limits(sc) == sw.estimate_limits(sc, sw.LIMIT_FACTOR)
+
+
+def test_a_sweep_point_that_fails_its_guarantees_fails_the_nominal_verdict_too():
+    rec = sw.run_one("variable-exponent-saturated", "code", 50.0, "exact", False)
+    assert rec["ok"] is False and rec["violations"][0].startswith("settles: failed")
+    assert rec["expanded_without_saturation"] is False  # expanded only while saturated
+    assert rec["nominal_ok"] is False
+
+
+def test_sweep_report_answers_from_its_records(tmp_path):
+    recs = sw.sweep(
+        names=["finite-time"],
+        rates=[500, 1000, 2000],
+        discretizations=["exact"],
+        limited=[False],
+        t_end=0.5,
+        jobs=1,
+    )
+    # 0.5 s is shorter than the bound T_s + T' = 3 s: every run passes, settling untested
+    assert all(r["ok"] and r["untested"] for r in recs)
+    md = sw.write_sweep_report(recs, tmp_path / "a" / "b", {"t_end": 0.5}, figure=False)
+    md = md.read_text()
+    lines = md.splitlines()
+    for line in (
+        (
+            "- **By the guarantees as checked: yes.** At 500 Hz and every faster swept rate "
+            "every scenario keeps its guarantees with exact."
+        ),
+        "- **At 500 Hz with the performance of the 2000 Hz run kept: yes, with exact.**",
+        "- **Lowest rate at which every scenario passes all three: 500 Hz**, with exact.",
+        "| finite-time | exact | never / never | 0.501 / 0.501 | 0.0 % / 0.0 % | - / - | all three |",
+        # all runs: (u) marks a run with an untested claim
+        "| exact | never / 0.501 (u) | never / 0.501 (u) | never / 0.501 (u) |",
+    ):
+        assert line in lines, line
+    assert "- Caveat: 1 passing 500 Hz runs have untested claims" in md
+    # The same records with the 500 Hz run failing: the answer and the table change.
+    recs[0].update(ok=False, nominal_ok=False, violations=["settling: failed: never settled"])
+    for r in recs:
+        del r["performance_ok"]  # the report sets it again from the fastest rate's run
+    # and a configuration run at 2 kHz only: left out of the comparison at 500 Hz
+    recs.insert(0, dict(recs[2], discretization="euler"))
+    md = sw.write_sweep_report(recs, tmp_path, {"t_end": 0.5}, figure=False).read_text()
+    assert "| exact | **x** never / 0.501 | never / 0.501 (u) | never / 0.501 (u) |" in md
+    assert "| euler |  |  | never / 0.501 (u) |" in md
+    assert (
+        "- **By the guarantees as checked: no** configuration brings every scenario down to "
+        "500 Hz." in md
+    )
+    assert "- **At 500 Hz with the performance of the 2000 Hz run kept: no.**" in md
+    assert md.splitlines()[md.splitlines().index("## 500 Hz next to 2000 Hz") + 4].endswith(
+        "| fails: settling: failed: never settled |"
+    )
+    assert "Caveat" not in md
+
+
+def test_xi_text_never_prints_a_value_below_one_as_one():
+    assert sw.xi_text(None) == "-"
+    assert sw.xi_text(0.5) == "0.500"
+    assert sw.xi_text(0.99997) == "1-3e-05"
+    assert sw.xi_text(1.0) == "1"

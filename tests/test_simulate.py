@@ -6,6 +6,7 @@ import math
 import sys
 from types import SimpleNamespace
 
+import famcc
 import numpy as np
 import pytest
 from famcc import plants
@@ -498,3 +499,60 @@ def test_summary_collects_the_metrics():
     assert s["saturation_episodes"] == 1 and s["last_saturation_end"] == 0.1
     assert s["largest_expansion"] == 1.0 and s["nominal_return_time"] is None
     assert {"max_abs_xi", "u_min", "u_max", "clamp_count"} <= set(s)
+
+
+def test_a_controller_without_famcc_configuration_is_named_by_its_class():
+    plant = plants.second_order()
+    res = simulate(plant, MockPD(), 0.01, reference=Sine())
+    assert res.controller_description == "MockPD (no famcc configuration)"
+    # a class whose default repr has no module ("<Bare object at 0x...>")
+    bare = type("Bare", (MockPD,), {"__module__": "builtins"})()
+    assert repr(bare).startswith("<Bare object at ")
+    res = simulate(plant, bare, 0.01, reference=Sine())
+    assert res.controller_description == "Bare (no famcc configuration)"
+
+
+def test_iae_is_the_trapezoid_of_the_absolute_error():
+    # trapezoids of |z1| = 2, 1, 0, 1, 4: 1.5 + 0.5 + 0.5 + 2.5 = 5, times dt
+    assert make_result([2.0, -1.0, 0.0, 1.0, -4.0]).iae == pytest.approx(0.5, rel=1e-12)
+    assert make_result([3.0]).iae == 0.0
+
+
+def test_repr_names_samples_horizon_and_step():
+    head = repr(make_result(np.zeros(6))).splitlines()[0]
+    assert head.startswith("<famcc.SimResult: 6 samples, 0-0.5 s at dt = 0.1 s;"), head
+
+
+def test_total_variation_of_u_per_second():
+    r = make_result(np.zeros(5), v=[0.0, 1.0, -1.0, -1.0, 2.0])  # 0.4 s; 1 + 2 + 0 + 3 = 6
+    assert r.tv_u_per_s == pytest.approx(15.0, rel=1e-12)
+    assert make_result([0.0], v=[3.0]).tv_u_per_s == 0.0  # no duration, no variation
+    empty = make_result([])
+    assert (empty.tv_u_per_s, empty.iae, empty.rms_u) == (0.0, 0.0, 0.0)
+
+
+def test_z1_ripple_counts_the_sample_at_the_settling_time():
+    r = make_result([1.0, 0.05, -0.02, 0.01])  # settled (eps 0.1) at 0.1 s, on its peak
+    assert r.settling_time(0.1) == 0.1
+    assert r.z1_ripple(0.1) == pytest.approx(0.07, rel=1e-12)
+    assert make_result([1.0, 1.0]).z1_ripple(0.1) is None
+
+
+def test_summary_of_a_run_that_never_settled_names_its_horizon():
+    text = make_result(np.ones(6)).summary(eps=0.1).text
+    assert "NOT settled to |z1| < 0.1 by the end (0.5 s; first entry never" in text, text
+
+
+def test_controller_description_names_constraint_laws_and_parameters():
+    ctrl = famcc.Controller(
+        2, 1e-3, famcc.FiniteTime(k=2.0, p=0.5), constraint="lateral", eps=0.02, k_u=2.0
+    )
+    res = simulate(plants.second_order(), ctrl, 0.01, reference=Sine())
+    assert res.controller_description == (
+        "LaMC (lateral constraint), h_p FiniteTime(k=2.0, p=0.5), eps = 0.02, T_s = 1 s, k_u = 2"
+    )
+    rfc = famcc.scenarios.paper("rfc").run(t_end=0.01).controller_description
+    assert rfc == (
+        "LoMC (longitudinal constraint), h_p FixedTime(alpha=1.0, p=0.5, beta=0.5, q=2.0) + NSMD, "
+        "FixedTime(alpha=2.0, p=0.5, beta=1.0, q=2.0) + NSMD, eps = 3, T_s = 1 s, k_u = 30"
+    )

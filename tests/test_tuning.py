@@ -7,6 +7,7 @@ import math
 import warnings
 
 import famcc
+import numpy as np
 import pytest
 
 MOTOR = {"u_limits": (-12.0, 12.0), "eps": 0.01, "settle_time": 1.5}
@@ -183,3 +184,56 @@ def test_tune_reports_failure_when_no_candidate_can_meet_the_requirement():
     assert f.level == "fail" and not d.ok
     assert len(d.trials) >= 15 and all(not t.feasible for t in d.trials)
     assert all(t.reason for t in d.trials)
+
+
+def _hand_run(z1, u, dt=0.1):
+    """A run of hand-made samples, the input inside the limits (-1, 1)."""
+    z1, u = np.asarray(z1, dtype=float), np.asarray(u, dtype=float)
+    t = np.round(np.arange(z1.size) * dt, 12)
+    return famcc.SimResult(
+        t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None], v=u, u=u, dt=dt, u_limits=(-1, 1)
+    )
+
+
+def test_assess_measures_a_hand_made_run():
+    # |e| < 0.1 from 0.15 s on; after it u moves by 0.05 (2.5 % of the range 2)
+    z1 = [1.0, 0.5, 0.2, 0.0, 0.01, -0.01, 0.0, 0.0, 0.0, 0.02, 0.0]
+    u = [1.0, -1.0, 0.5, 0.05, 0.0, 0.05, 0.0, 0.05, 0.0, 0.05, 0.0]
+    res = _hand_run(z1, u, dt=0.05)  # 0.5 s
+    a = famcc.tuning.assess(res, eps=0.1, settle_time=0.15, u_limits=(-1, 1))
+    # settled exactly at the required time: the requirement is met
+    assert a.settling_time == 0.15 and a.ok, a
+    assert a.steady_error == 0.02  # the largest |e| over the last fifth (t >= 0.4 s)
+    assert a.ripple == pytest.approx(0.025, rel=1e-12)
+    # total variation 2 + 1.5 + 0.45 + 7 * 0.05 = 4.3 in 0.5 s
+    assert a.effort == pytest.approx(8.6, rel=1e-12)
+    tight = famcc.tuning.assess(res, eps=0.1, settle_time=0.15, u_limits=(-1, 1), ripple_limit=0.01)
+    assert tight.failures == ["u ripple 2.5 % > 1 % of the range"]
+    late = famcc.tuning.assess(res, eps=0.1, settle_time=0.14, u_limits=(-1, 1))
+    assert late.failures == ["settled at 0.15 s > 0.14 s"]
+
+
+def test_assess_takes_the_ripple_of_a_run_that_never_settled_over_its_last_tenth():
+    u = np.where(np.arange(21) < 18, 1.0, 0.0) * np.resize([1.0, -1.0], 21)  # +-1 until 1.8 s
+    u[18:] = [0.1, -0.1, 0.1]  # the last 10 % (t >= 1.8 s of 2 s): peak-to-peak 0.2
+    a = famcc.tuning.assess(_hand_run(np.ones(21), u), eps=0.1, settle_time=1.0, u_limits=(-1, 1))
+    assert a.settling_time is None and "never settled" in a.failures
+    assert a.ripple == pytest.approx(0.1, rel=1e-12)  # 0.2 of the range 2
+
+
+def test_assessment_text_gives_the_percentages():
+    a = famcc.tuning.Assessment(
+        settling_time=0.5,
+        steady_error=0.012,
+        expanded_unsaturated=0.25,
+        ripple=0.02,
+        effort=3.0,
+        saturated=0.1,
+    )
+    assert str(a) == (
+        "settling time 0.500 s, steady max |e| 0.012, expanded with headroom 25 %, u ripple "
+        "2 % of the range, saturated 10 %: requirement met"
+    )
+    b = famcc.tuning.Assessment(None, 0.5, 0.0, 0.0, 0.0, 0.0, ["never settled", "x"])
+    assert str(b).startswith("settling time never,")
+    assert str(b).endswith("saturated 0 %: requirement NOT met: never settled; x")

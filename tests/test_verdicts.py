@@ -263,3 +263,94 @@ def test_steady_rms_is_the_rms_after_settling():
     assert r.steady_rms(0.1) == pytest.approx(expected)
     assert _result(np.ones(5)).steady_rms(0.1) is None
     assert t.size == z1.size
+
+
+def test_requirements_name_a_bad_accuracy_or_time():
+    r = _result(np.where(np.arange(301) * 0.01 < 1.5, 1.0, 0.01))
+    for eps in (0.0, -0.1, float("inf"), float("nan"), "0.1"):
+        with pytest.raises(ValueError, match="eps must be a finite number > 0"):
+            verdicts.requirements(r, eps=eps)
+    for settle_time in (-1.0, -1e-9, float("inf"), float("nan"), "2"):
+        with pytest.raises(ValueError, match="settle_time must be a finite number >= 0"):
+            verdicts.requirements(r, eps=0.1, settle_time=settle_time)
+    with pytest.raises(ValueError, match="give eps too"):
+        verdicts.requirements(r, settle_time=2.0)
+    # 0 s is a (demanding) requirement, not an error: the run settles at 1.5 s
+    assert [(v.name, v.status) for v in verdicts.requirements(r, eps=0.1, settle_time=0)] == [
+        ("settled-by", "failed")
+    ]
+
+
+def test_failed_unsaturated_and_nominal_say_how_often_and_from_when():
+    k = np.arange(400)
+    v = np.where((k >= 100) & (k < 200), 5.0, 0.0)  # outside the limits for 1 s of 4
+    r = _result(np.zeros(400), v=v, limits=(-1.0, 1.0), expanded=(k >= 300) & (k < 310))
+    u = verdicts.unsaturated(r, startup=0.0)
+    assert u.status == "failed"
+    assert u.detail == (
+        "outside the limits at 25.0 % of the samples after the start-up, first at 1.000 s"
+    )
+    n = verdicts.nominal(r, startup=0.0)
+    assert n.status == "failed"
+    assert n.detail == (
+        "expanded at 2.5 % of the samples after the start-up, first at 3.000 s, up to 2x"
+    )
+
+
+def test_an_untested_claim_still_says_when_the_run_settled():
+    settled = _result(np.where(np.arange(301) * 0.01 < 2.0, 1.0, 0.0))  # 2 s of a 3 s run
+    never = _result(np.ones(301))
+    for r, when in ((settled, "2.000 s"), (never, "never")):
+        v = verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=5.0)
+        assert v.status == "untested" and v.detail.endswith(f"(settled at {when})"), v
+        v = verdicts.settled_by(r, eps=0.1, by=4.0)
+        assert v.status == "untested" and v.detail.endswith(f"(settled at {when})"), v
+
+
+def test_settles_when_only_the_last_sample_is_inside_the_band():
+    z1 = np.ones(101)
+    z1[-1] = 0.0
+    v = verdicts.settles(_result(z1), eps=0.1, within=10.0)
+    assert (v.status, v.detail) == ("held", "settled at 1.000 s")
+    z1[-1] = 1.0
+    assert verdicts.settles(_result(z1), eps=0.1, within=10.0).status == "failed"
+
+
+def test_only_an_episode_that_lasts_to_the_end_is_never_due():
+    t = np.arange(1001) * 0.01  # 10 s
+    v = np.where(((t >= 1.0) & (t < 2.0)) | (t >= 8.0), 9.0, 0.0)
+    z1 = np.where((t < 2.2) | (t >= 8.5), 1.0, 0.0)  # out of the band again while saturated
+    r = _result(z1, v=v, limits=(-1.0, 1.0))
+    # T' = 2: episode 1 ends at 2 s, due at 4 s, before the next (8 s): held; the last
+    # never ended, so it is not due however long T' is.
+    rec = verdicts.recovery(r, 0.1, 1.0, 2.0)
+    assert (rec.status, rec.detail) == ("held", "all 1 due windows hold; 1 not due")
+
+
+def test_a_failed_recovery_counts_every_window_and_details_the_first_two():
+    t = np.arange(1001) * 0.01
+    v = np.where(
+        ((t >= 1.0) & (t < 1.5)) | ((t >= 4.0) & (t < 4.5)) | ((t >= 7.0) & (t < 7.5)), 9.0, 0.0
+    )
+    r = _result(np.ones(t.size), v=v, limits=(-1.0, 1.0))  # never inside the band
+    rec = verdicts.recovery(r, 0.1, 1.0, 0.5)
+    assert rec.failed and rec.detail.startswith("3 of 3 due windows fail; after the episode ")
+    assert rec.detail.count("after the episode ending at") == 2
+    assert "1.500 s: max |z1| = 1 in [2.000, 4.000] s" in rec.detail
+
+
+def test_check_lists_the_failed_claims_only():
+    sc = scenarios.paper("finite-time")  # eps 0.1, bound T_s + T' = 3 s
+    k = np.arange(501)  # 5 s
+    z1 = np.where(k < 400, 1.0, 0.0)  # settles at 4 s, after the bound
+    v = np.where((k >= 100) & (k < 110), 500.0, 0.0)  # beyond the limits after the start-up
+    bad = _result(z1, v=v, limits=sc.u_limits, expanded=np.zeros(501, dtype=bool))
+    assert sc.check(bad) == [
+        "settling: failed: settled only at 4.000 s",  # bound max(1.1, 1) + 2 = 3.1 s
+        (
+            "unsaturated: failed: outside the limits at 2.1 % of the samples after the "
+            "start-up, first at 1.000 s"
+        ),
+    ]
+    good = _result(np.where(k < 100, 1.0, 0.0), limits=sc.u_limits, expanded=np.zeros(501, bool))
+    assert sc.check(good) == []
