@@ -5,12 +5,11 @@ Parameter names, defaults and keyword-only markers follow the
 checks them against the runtime with ``mypy.stubtest``.
 """
 
-from collections.abc import Sequence
-from typing import Any, Callable, ClassVar, Final, Literal, final, overload
+from collections.abc import Callable, Sequence
+from typing import Any, ClassVar, Final, Literal, TypeAlias, final, overload
 
 import numpy as np
 from numpy.typing import NDArray
-from typing_extensions import TypeAlias
 
 __all__ = [
     "MAX_ORDER",
@@ -67,10 +66,8 @@ _Gamma: TypeAlias = Literal["log", "rational"]
 _Latch: TypeAlias = Literal["paper", "authors"]
 _DType: TypeAlias = Literal["float64", "float32"]
 
-# Defaults written ``= ...`` are famcc-core's (the binding names them, it does not
-# repeat them): k0 = 2, settle_time = 1 s, gamma "log", latch "paper", transition
-# "exponential", discretization "exact", mu = 0.01, dtype "float64", constraint
-# "longitudinal".
+# The constructors' defaults are famcc-core's: the binding passes the core's values
+# and its text signatures spell them out (tests/test_docs.py checks that they agree).
 
 class ConfigError(ValueError):
     """An invalid configuration value; the message names the parameter and the rule."""
@@ -78,15 +75,36 @@ class ConfigError(ValueError):
 class StepError(ValueError):
     """A step that could not be taken (non-finite input, bad ``dt``, overflow).
 
-    The state is unchanged, except after an internal overflow past the first
-    step: the valid sample is then consumed (hold the previous output).
+    For a non-finite ``e``, ``applied`` or ``dt`` the state is unchanged; an overflow on a valid sample after the first step consumes the sample (hold the previous output).
     """
 
 # -- feedback laws -------------------------------------------------------------
 
 @final
 class Linear:
-    """Linear law ``h(s) = -k s``."""
+    """Linear law ``h(s) = -k s`` (eq. (59) (lfmi)).
+
+    A stage law ``h_p`` of the iterative manifold: it maps a stage value
+    ``s`` to the desired rate ``ds/dt = h_p(s)``. Callable on floats and
+    NumPy arrays; frozen, comparable and picklable.
+
+    Parameters
+    ----------
+    k : float
+        Gain, 1/s, ``k > 0``.
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``k`` not finite and ``> 0``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.Linear(k=2.0)
+    >>> h(0.5), h.slope(0.5)
+    (-1.0, -2.0)
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(cls, k: float) -> Linear: ...
@@ -105,7 +123,32 @@ class Linear:
 
 @final
 class FiniteTime:
-    """Finite-time law ``h(s) = -k |s|^p sign(s)``, ``0 < p < 1``."""
+    """Finite-time law ``h(s) = -k |s|^p sign(s)``, ``0 < p < 1`` (eq. (37) (fn)).
+
+    A stage law ``h_p`` (``ds/dt = h_p(s)``) that reaches ``s = 0`` in
+    finite time (Corollary 1, eq. (42) (fnT)). Callable on floats and NumPy
+    arrays; frozen, comparable and picklable.
+
+    Parameters
+    ----------
+    k : float
+        Gain, ``k > 0``, unit of ``s`` per s over unit of ``s`` to the
+        power ``p``.
+    p : float
+        Exponent, dimensionless, ``0 < p < 1``.
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``k <= 0`` or ``p`` outside ``(0, 1)``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.FiniteTime(k=1.0, p=0.5)
+    >>> h(4.0), h(-4.0)
+    (-2.0, 2.0)
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(cls, k: float, p: float) -> FiniteTime: ...
@@ -126,7 +169,37 @@ class FiniteTime:
 
 @final
 class FixedTime:
-    """Fixed-time law ``h(s) = -alpha |s|^p sign(s) - beta |s|^q sign(s)``."""
+    """Fixed-time law ``h(s) = -alpha |s|^p sign(s) - beta |s|^q sign(s)``, ``0 < p < 1 < q`` (eq. (61) (RFCs)).
+
+    A stage law ``h_p`` (``ds/dt = h_p(s)``) whose settling time is bounded
+    independently of the initial value (Corollary 3, eq. (63) (fxTho)).
+    Callable on floats and NumPy arrays; frozen, comparable and picklable.
+
+    Parameters
+    ----------
+    alpha : float
+        Low-power gain, ``alpha > 0`` (unit of ``s`` per s over unit of
+        ``s`` to the power ``p``).
+    p : float
+        Low power, dimensionless, ``0 < p < 1``.
+    beta : float
+        High-power gain, ``beta > 0`` (unit of ``s`` per s over unit of
+        ``s`` to the power ``q``).
+    q : float
+        High power, dimensionless, finite and ``q > 1``.
+
+    Raises
+    ------
+    famcc.ConfigError
+        A gain ``<= 0``, ``p`` outside ``(0, 1)`` or ``q <= 1``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.FixedTime(alpha=1.0, p=0.5, beta=0.5, q=2.0)
+    >>> h(4.0)
+    -10.0
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(cls, alpha: float, p: float, beta: float, q: float) -> FixedTime: ...
@@ -151,7 +224,39 @@ class FixedTime:
 
 @final
 class VariableExponent:
-    """Continuous variable-exponent law: exponent r_b at 0, r_1 at 1, r_t at infinity."""
+    """Continuous variable-exponent law (eq. (45) (fxe)): exponent r_b at 0, r_1 at |s| = 1, r_t at infinity.
+
+    ``h(s) = -k |s|^r(s) sign(s)`` with ``r(s) = a s^2 / (1 + b s^2) + r_b``,
+    ``b = (r_1 - r_b) / (r_t - r_1)`` and ``a = (r_t - r_b) b``: a stage law
+    ``h_p`` (``ds/dt = h_p(s)``) with a settling bound of Corollary 2
+    (eq. (53) (fxeT)). Callable on floats and NumPy arrays; frozen,
+    comparable and picklable.
+
+    Parameters
+    ----------
+    k : float
+        Gain, ``k > 0`` (unit of ``s`` per s at ``|s| = 1``).
+    r_b : float
+        Exponent at ``s = 0``, dimensionless, ``0 < r_b < 1``.
+    r_1 : float
+        Exponent at ``|s| = 1``, dimensionless, ``r_1 > 1``.
+    r_t : float
+        Exponent as ``|s|`` tends to infinity, dimensionless, finite and
+        ``r_t > r_1``.
+
+    Raises
+    ------
+    famcc.ConfigError
+        A rule above broken, or ``r_b`` too small for ``r_1`` and ``r_t``
+        (``h`` must be strictly decreasing, paper Step B1).
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.VariableExponent(k=1.5, r_b=0.5, r_1=2.0, r_t=3.0)
+    >>> h(1.0), h(-1.0)
+    (-1.5, 1.5)
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(cls, k: float, r_b: float, r_1: float, r_t: float) -> VariableExponent: ...
@@ -176,7 +281,36 @@ class VariableExponent:
 
 @final
 class MoulayDiscontinuous:
-    """The discontinuous variable-exponent law of Moulay et al. (comparison only)."""
+    """The discontinuous variable-exponent law of Moulay et al. (eq. (58) (fvec)), for comparison only.
+
+    ``h(s) = -beta |s|^p(s) sign(s)`` with ``p(s) = lambda_ s^2 / (1 + mu s^2)``.
+    Its exponent is 0 at ``s = 0``, so ``h`` jumps from ``+beta`` to
+    ``-beta`` across zero. Callable on floats and NumPy arrays; frozen,
+    comparable and picklable.
+
+    Parameters
+    ----------
+    beta : float
+        Gain, ``beta > 0`` (unit of ``s`` per s).
+    lambda_ : float
+        Exponent numerator coefficient, ``lambda_ > 0`` (1 over unit of
+        ``s`` squared).
+    mu : float
+        Exponent denominator coefficient, finite and ``mu >= 0`` (1 over
+        unit of ``s`` squared).
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``beta <= 0``, ``lambda_ <= 0`` or ``mu < 0``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.MoulayDiscontinuous(beta=1.0, lambda_=1.0, mu=0.5)
+    >>> h(1e-9) < -0.99, h(-1e-9) > 0.99
+    (True, True)
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(cls, beta: float, lambda_: float, mu: float) -> MoulayDiscontinuous: ...
@@ -203,10 +337,42 @@ _Law: TypeAlias = Linear | FiniteTime | FixedTime | VariableExponent | MoulayDis
 
 @final
 class Smooth:
-    """Smooth skewed manifold design (SSMD)."""
+    """Smooth skewed manifold design (SSMD, eq. (14) (SSMD)).
+
+    Skews a stage law: ``h_m(s) = h_p(s) + T1(s) eps_s`` with
+    ``T1(s) = 1 - 2 S((s + eps_z) / (2 eps_z))``, so ``h_m = h_p +- eps_s``
+    outside ``+-eps_z``. Passed as ``skew=`` to :class:`Controller` or to
+    :func:`skewed`; frozen, comparable and picklable.
+
+    Parameters
+    ----------
+    eps_s : float
+        Vertical offset of the skewed law outside ``+-eps_z``, ``> 0``, rate
+        units (unit of ``s`` per s).
+    eps_z : float
+        Half-width of the transition zone around 0, ``> 0``, unit of ``s``.
+    transition : {'exponential', 'cubic', 'quintic', 'sine'}, default 'exponential'
+        The double-ended transition ``S`` of ``T1``; 'exponential' is the
+        paper's eq. (2) (trnsS).
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``eps_s`` or ``eps_z`` not finite and ``> 0``, or an unknown
+        ``transition``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.skewed(famcc.Linear(1.0), famcc.Smooth(eps_s=0.2, eps_z=0.1))
+    >>> round(h(-1.0), 12), h(0.0)
+    (1.2, 0.0)
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
-    def __new__(cls, eps_s: float, eps_z: float, transition: _Transition = ...) -> Smooth: ...
+    def __new__(
+        cls, eps_s: float, eps_z: float, transition: _Transition = "exponential"
+    ) -> Smooth: ...
     @property
     def eps_s(self) -> float: ...
     @property
@@ -218,11 +384,49 @@ class Smooth:
 
 @final
 class Nonsingular:
-    """Nonsingular skewed manifold design (NSMD)."""
+    """Nonsingular skewed manifold design (NSMD, eq. (15) (NSMD)).
+
+    Skews a stage law: ``h_m(s) = T2(s) (h_p(s) + T1(s) eps_s) - (1 - T2(s)) k_p s``
+    with ``T2(s) = U(s / eps_z)`` and ``k_p = k_pp (eps_s - h_p(eps_z)) / eps_z``.
+    Outside ``+-eps_z`` it equals ``h_p +- eps_s``; near 0 it is the line
+    ``-k_p s``, which removes the infinite slope of power laws below 1. The
+    widths of Corollary 3 are eqs. (62a) (NSMDie), (62b) (NSMDif). Passed as
+    ``skew=`` to :class:`Controller` or to :func:`skewed`; frozen, comparable
+    and picklable.
+
+    Parameters
+    ----------
+    eps_s : float
+        Vertical offset of the skewed law outside ``+-eps_z``, ``> 0``, rate
+        units (unit of ``s`` per s).
+    eps_z : float
+        Half-width of the transition zone around 0, ``> 0``, unit of ``s``.
+    k_pp : float
+        Slope factor, dimensionless, ``> 0``: it sets the slope ``-k_p`` of
+        ``h_m`` at 0.
+    transition : {'exponential', 'cubic', 'quintic', 'sine'}, default 'exponential'
+        The double-ended transition ``S`` of ``T1`` and ``T2``; 'exponential'
+        is the paper's eq. (2) (trnsS).
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``eps_s``, ``eps_z`` or ``k_pp`` not finite and ``> 0``, or an
+        unknown ``transition``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.skewed(famcc.FiniteTime(1.0, 0.5), famcc.Nonsingular(0.1, 0.1, 0.1))
+    >>> h(1.0), h(-1.0)
+    (-1.1, 1.1)
+    >>> round(h.k_p, 6)
+    0.416228
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(
-        cls, eps_s: float, eps_z: float, k_pp: float, transition: _Transition = ...
+        cls, eps_s: float, eps_z: float, k_pp: float, transition: _Transition = "exponential"
     ) -> Nonsingular: ...
     @property
     def eps_s(self) -> float: ...
@@ -239,7 +443,22 @@ _Skew: TypeAlias = Smooth | Nonsingular
 
 @final
 class Skewed:
-    """A skewed law h_m (built by :func:`skewed`; not constructible directly)."""
+    """A skewed law h_m (eqs. (14) (SSMD), (15) (NSMD)), callable on floats and arrays.
+
+    Built by :func:`skewed` from a law and an optional skew; not
+    constructible directly. ``h_m(x)`` is the skewed law, :meth:`inverse`
+    its inverse ``h_v``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.skewed(famcc.Linear(1.0), famcc.Smooth(eps_s=0.2, eps_z=0.1))
+    >>> y = h(-1.0)
+    >>> round(h.inverse(y), 9)
+    -1.0
+    >>> h.k_p
+    0.0
+    """
 
     @overload
     def __call__(self, x: _Scalar) -> float: ...
@@ -250,34 +469,100 @@ class Skewed:
     @overload
     def inverse(self, y: _ArrayIn) -> _F64Array: ...
     @property
-    def k_p(self) -> float: ...
+    def k_p(self) -> float:
+        """The NSMD slope k_p (0 for other designs)."""
 
 # -- differentiator --------------------------------------------------------------
 
 @final
 class HighGain:
-    """The high-gain differentiator (eq. HGD)."""
+    """The high-gain differentiator (eq. (34) (HGD)).
+
+    Estimates the error's derivatives ``e', ..., e^(n-1)`` from its samples
+    for the output-feedback controller (eq. (35) (uOF)): passed as
+    ``differentiator=`` to :class:`Controller`. Frozen, comparable and
+    picklable; :meth:`default` builds the paper's.
+
+    Parameters
+    ----------
+    mu : float
+        The gain's time constant ``mu``, s (``> 0``): smaller is faster and
+        amplifies noise more.
+    a : sequence of float
+        The coefficients ``(a1, ..., an)``, one per order (``1..MAX_ORDER``
+        entries), all ``> 0``, with ``s^n + a1 s^(n-1) + ... + an`` Hurwitz;
+        dimensionless.
+    discretization : {'exact', 'euler', 'tustin'}, default 'exact'
+        How the continuous differentiator is discretized for the sample
+        period: 'exact' (zero-order hold), 'euler' (forward) or 'tustin'
+        (bilinear).
+    limits : sequence of float, default None
+        Saturation ``|z_hat_i| <= limit_i`` of the estimates fed to the law,
+        one per order, in the unit of each estimate (``z_k`` in the unit of
+        ``e`` per s^(k-1)), all ``> 0`` (``inf``: no limit for that
+        estimate); None: no limits.
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``mu <= 0``, coefficients that are not Hurwitz, or ``limits`` of the
+        wrong length or not ``> 0``.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> h = famcc.HighGain(0.01, [4.0, 4.0])
+    >>> h.a, h.discretization, h.limits
+    ((4.0, 4.0), 'exact', None)
+    >>> famcc.HighGain.default(2) == h
+    True
+    """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
     def __new__(
         cls,
         mu: float,
         a: Sequence[float],
-        discretization: _Discretization = ...,
+        discretization: _Discretization = "exact",
         limits: Sequence[float] | None = None,
     ) -> HighGain: ...
     @staticmethod
-    def default(order: int, mu: float = ..., discretization: _Discretization = ...) -> HighGain: ...
+    def default(
+        order: int, mu: float = 0.01, discretization: _Discretization = "exact"
+    ) -> HighGain:
+        """staticmethod(function) -> method
+
+        Convert a function to be a static method.
+
+        A static method does not receive an implicit first argument.
+        To declare a static method, use this idiom:
+
+             class C:
+                 @staticmethod
+                 def f(arg1, arg2, argN):
+                     ...
+
+        It can be called either on the class (e.g. C.f()) or on an instance
+        (e.g. C().f()). Both the class and the instance are ignored, and
+        neither is passed implicitly as the first argument to the method.
+
+        Static methods in Python are similar to those found in Java or C++.
+        For a more advanced concept, see the classmethod builtin.
+        """
     @staticmethod
     def for_rate(order: int, dt: float) -> HighGain: ...
     @property
-    def mu(self) -> float: ...
+    def mu(self) -> float:
+        """The gain's time constant, s."""
     @property
-    def a(self) -> tuple[float, ...]: ...
+    def a(self) -> tuple[float, ...]:
+        """The coefficients ``(a1, ..., an)``."""
     @property
-    def discretization(self) -> _Discretization: ...
+    def discretization(self) -> _Discretization:
+        """'exact', 'euler' or 'tustin'."""
     @property
-    def limits(self) -> tuple[float, ...] | None: ...
+    def limits(self) -> tuple[float, ...] | None:
+        """The estimates' limits, or None."""
     def __eq__(self, value: object, /) -> bool: ...
     def __getnewargs__(self) -> tuple[float, list[float], str, list[float] | None]: ...
 
@@ -285,61 +570,175 @@ class HighGain:
 
 @final
 class Diagnostics:
-    """What the last step did (read-only)."""
+    """What a controller's last step did (read-only).
+
+    Returned by ``Controller.diagnostics``; not constructed directly. A
+    snapshot: it does not change when the controller steps again. The
+    attributes are the quantities of the step in the paper's notation:
+    the constraint variables ``xi`` (eq. (28) (xi)) and ``xi~`` (eq. (31)
+    (Wxi)), the manifold ``s`` (eq. (11) (IS)), the envelopes' bounds
+    (eqs. (21) (xUxL), (22) (yUyL)) and their flexible expansion (eq. (30)
+    (WxyUxyL)), and the estimate ``z_hat`` of the differentiator (eq. (34)
+    (HGD)).
+
+    Examples
+    --------
+    >>> import famcc
+    >>> ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
+    ...                         constraint="lateral", eps=0.1, k_u=5.0)
+    >>> v = ctrl.step(-1.0)
+    >>> d = ctrl.diagnostics
+    >>> d.v == v, d.t, d.expanded, d.saturation_gap is None
+    (True, 0.0, False, True)
+    >>> abs(d.xi) < 1.0
+    True
+    """
 
     @property
-    def t(self) -> float: ...
+    def t(self) -> float:
+        """Time of the last sample, s."""
     @property
-    def xi(self) -> float: ...
+    def xi(self) -> float:
+        """Constraint variable used for the output (flexible xi~)."""
     @property
-    def xi_nominal(self) -> float: ...
+    def xi_nominal(self) -> float:
+        """Nominal constraint variable xi (eq. (28))."""
     @property
-    def s(self) -> float: ...
+    def s(self) -> float:
+        """Manifold value s = s_n."""
     @property
-    def stages(self) -> _F64Array: ...
+    def stages(self) -> _F64Array:
+        """s_1..s_n (NumPy array)."""
     @property
-    def s_prev(self) -> float: ...
+    def s_prev(self) -> float:
+        """s_{n-1}."""
     @property
-    def ds_prev(self) -> float: ...
+    def ds_prev(self) -> float:
+        """d/dt s_{n-1}."""
     @property
-    def bounds(self) -> tuple[float, float]: ...
+    def bounds(self) -> tuple[float, float]:
+        """Flexible upper bounds (x~_U, y~_U)."""
     @property
-    def nominal_bounds(self) -> tuple[float, float]: ...
+    def nominal_bounds(self) -> tuple[float, float]:
+        """Nominal upper bounds (x_U, y_U)."""
     @property
-    def z_hat(self) -> _F64Array: ...
+    def z_hat(self) -> _F64Array:
+        """The estimate of the error vector (z_1..z_n) the output was computed from
+        (NumPy array; with integral action the integral is `integral`).
+        """
     @property
-    def expanded(self) -> bool: ...
+    def expanded(self) -> bool:
+        """True when the flexible bounds were expanded."""
     @property
-    def expansion(self) -> float: ...
+    def expansion(self) -> float:
+        """Expansion factor of the flexible bounds (flexible / nominal, 1.0 when nominal)."""
     @property
-    def saturation_gap(self) -> float | None: ...
+    def saturation_gap(self) -> float | None:
+        """v_{k-1} - applied, when `applied` was passed."""
     @property
-    def clamp_count(self) -> int: ...
+    def clamp_count(self) -> int:
+        """Steps at which |xi| had to be clamped below 1."""
     @property
-    def v_unlimited(self) -> float: ...
+    def v_unlimited(self) -> float:
+        """The law's output -k_u Gamma(xi) before the output limits."""
     @property
-    def integral(self) -> float | None: ...
+    def integral(self) -> float | None:
+        """The integral I of the error the output used (integral=True), else None."""
     @property
-    def integrating(self) -> bool: ...
+    def integrating(self) -> bool:
+        """True when this step added its sample to I (False while the integral
+        separation froze it, and without integral action).
+        """
     @property
-    def unsaturated_expansions(self) -> int: ...
+    def unsaturated_expansions(self) -> int:
+        """Steps so far at which the bounds were expanded while the actuator was
+        known to have headroom (`applied` passed or output limits set).
+        """
     @property
-    def v(self) -> float: ...
+    def v(self) -> float:
+        """The output returned (after the output limits, when configured)."""
 
 @final
 class Controller:
-    """The FAMCC controller.
+    """The FAMCC controller: fully actuated manifold constraint control.
 
-    The sign convention of every step method is ``e = y - y_d`` (the output minus
-    the reference: the opposite of a PID's ``setpoint - y``); :meth:`step_output`
-    takes ``y`` and ``y_d`` and forms it.
+    A model-free output-feedback controller for an unknown strict-feedback
+    plant of order n (eq. (5) (SFS)). It drives the tracking error to the
+    preset accuracy ``eps`` within the preset time ``settle_time`` and keeps
+    working when the actuator saturates. The sign convention of every step
+    method is ``e = y - y_d`` (the output minus the reference: the opposite of
+    a PID's ``setpoint - y``); :meth:`step_output` takes ``y`` and ``y_d`` and
+    forms it.
 
     Parameters
     ----------
     order : int
-        The plant's order n (the relative degree of the output).
-    integral : bool, optional
-        Integral action (default False; docs/design.md §3.8). The law of order
+        The plant's order n (the relative degree of the output),
+        ``1 <= order <= MAX_ORDER``.
+    dt : float
+        Sample period, s (``> 0``); :meth:`step_dt` takes a one-off period.
+    feedback : Linear, FiniteTime, FixedTime, VariableExponent, MoulayDiscontinuous or a sequence of them, default None
+        The stage laws ``h_p`` of the iterative manifold (eq. (11) (IS)): one
+        law for every stage, or a list of ``order - 1`` (``order`` with
+        integral action), first stage first. Required at order >= 2; omitted
+        (or empty) at order 1, which has no stages.
+    skew : Smooth, Nonsingular, None or a sequence of them, default None
+        The skews of the stage laws (eqs. (14) (SSMD), (15) (NSMD)): one for
+        every stage, or one per stage (a None entry: that stage unskewed).
+        None: no stage is skewed.
+    constraint : {'longitudinal', 'lateral', 'oblique'}, default 'longitudinal'
+        The manifold constraint (paper Step C1): LoMC constrains ``s``
+        itself, LaMC ``s_{n-1} - h_v(ds_{n-1})``, OMC the oblique combination
+        of both (eq. (27) (xyc)).
+    eps : float or (float, float)
+        Final half-widths of the constraint (required): ``eps_y`` (unit of
+        ``s``) for 'longitudinal', ``eps_x`` (unit of ``s_{n-1}``) for
+        'lateral', the pair ``(eps_x, eps_y)`` for 'oblique'. With the
+        paper's choice ``eps_x = eps_z`` at order 2 it is the output accuracy,
+        in the unit of ``y``.
+    settle_time : float, default 1.0
+        Preset settling time ``T_s`` of the envelopes (eqs. (21) (xUxL),
+        (22) (yUyL)), s (``> 0``).
+    k0 : float, default 2.0
+        Initial-width factor of the envelopes, dimensionless, ``k0 > 1``
+        (eqs. (21)-(22)).
+    k_u : float
+        Control gain ``k_u > 0`` (required), input units: the output is
+        ``v = -k_u Gamma(xi)`` (eq. (29) (uT)).
+    gamma : {'log', 'rational'}, default 'log'
+        The map ``Gamma`` of eq. (29) (uT): 'log' is
+        ``ln((1 + xi)/(1 - xi)) = 2 atanh(xi)``, 'rational' is
+        ``xi / ((1 + xi)(1 - xi))``.
+    rho_e : float, 'auto' or None, default 'auto'
+        The flexible-boundary margin ``rho_e`` of eq. (30) (WxyUxyL), in the
+        unit of the constrained variable: 'auto' is ``min(0.01, eps / 10)``
+        (the smallest final width), None turns the flexible boundary off.
+        :meth:`config` shows the margin in effect.
+    differentiator : HighGain, 'auto' or None, default 'auto'
+        The high-gain differentiator (eq. (34) (HGD)) that estimates
+        ``e', ..., e^(n-1)`` from ``e`` (eq. (35) (uOF)): 'auto' is the
+        paper's (exact) up to order 3 and
+        ``HighGain.default(order, discretization="tustin")`` above, none at
+        order 1 (which needs none); None: state feedback only
+        (:meth:`step_state`).
+    latch : {'paper', 'authors'}, default 'paper'
+        How the envelopes' initial width is latched from the first sample's
+        offset ``s0``: 'paper' (text after eq. (22) (yUyL))
+        ``rho0 = k0 max(|s0|, eps)``, 'authors' (the authors' code)
+        ``rho0 = max(k0 |s0|, eps)``.
+    transition : {'exponential', 'cubic', 'quintic', 'sine'}, default 'exponential'
+        The transition ``S`` of the flexible boundary: 'exponential' is the
+        paper's eq. (2) (trnsS), C-infinity; 'cubic' ``3z^2 - 2z^3``;
+        'quintic' ``10z^3 - 15z^4 + 6z^5``; 'sine' ``(1 - cos(pi z)) / 2``.
+    initial_derivatives : sequence of float, default None
+        The differentiator's initial estimates of ``(z2, ..., zn)``
+        (``order - 1`` entries, ``z_k`` in the unit of ``e`` per s^(k-1));
+        None: zeros.
+    dtype : {'float64', 'float32'}, default 'float64'
+        The float type of the core's arithmetic (the API takes and returns
+        Python floats either way).
+    integral : bool, default False
+        Integral action (docs/design.md §3.8). The law of order
         ``n + 1`` acts on ``(I, e, e', ..., e^(n-1))`` with ``I`` the exact integral
         of the measured error (rectangle rule), so a constant load is carried by
         ``I`` and the error tends to 0. ``feedback`` and ``skew`` then have ``order``
@@ -349,24 +748,29 @@ class Controller:
         integrated only while ``|s| <= eps`` (the final band) and not while the
         output is beyond a known limit with ``e`` pushing it further. Needs
         ``order < MAX_ORDER``.
-    output_limits : (float, float), optional
-        Magnitude limits ``(lo, hi)`` of the output, ``lo < hi``, input units
-        (default None). :meth:`step` returns the limited output; it counts as the
+    output_limits : (float, float), default None
+        Magnitude limits ``(lo, hi)`` of the output, ``lo < hi``, input units.
+        :meth:`step` returns the limited output; it counts as the
         applied input for the integral separation and the health count, and
         ``diagnostics.v_unlimited`` keeps the law's own output.
-    rate_limit : float, optional
-        The output's largest rate of change, input units per second (default
-        None).
-    initial_output : float, optional
-        Bumpless start (default None): the first step's output equals
+    rate_limit : float, default None
+        The output's largest rate of change, input units per second.
+    initial_output : float, default None
+        Bumpless start, input units: the first step's output equals
         ``initial_output`` when that is feasible (with integral action by the
         choice of ``I_0``; without, by rescaling the latched widths), else the
         nearest feasible output.
 
+    Raises
+    ------
+    famcc.ConfigError
+        An invalid value or combination; the message names the parameter
+        and the rule.
+
     Warns
     -----
     famcc.DesignWarning
-        At construction, once per legal but risky choice (``lint()``): dt too
+        At construction, once per legal but risky choice (:meth:`lint`): dt too
         coarse for mu, a last-stage law that chatters when sampled, rho_e too
         large for eps, no estimate limits at differentiator order >= 4, the
         exact ZOH at order >= 4. While stepping with the applied input known
@@ -375,6 +779,32 @@ class Controller:
         settling time in total (``diagnostics.unsaturated_expansions >=
         0.5 settle_time / dt``: persistent, not a start-up transient or the
         recovery after a saturation): ``k_u`` too small for the plant.
+
+    See Also
+    --------
+    ControllerBank : n copies stepped together from an array.
+    famcc.design : a design from the plant's limits and the wanted accuracy.
+
+    Notes
+    -----
+    The output is the flexible manifold constraint controller
+    ``v = -k_u Gamma(xi~)`` (eqs. (31) (Wxi), (32) (WuT)) on the iterative
+    manifold ``s = s_n`` (eq. (11) (IS)), fed by the differentiator's
+    estimate (eq. (35) (uOF)). The defaults are famcc-core's (every example
+    of the paper). A controller can be copied, pickled, and continued from
+    :meth:`state`.
+
+    Examples
+    --------
+    Example 1 of the paper (LaMC, finite-time law):
+
+    >>> import famcc
+    >>> ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
+    ...                         constraint="lateral", eps=0.1, k_u=5.0)
+    >>> round(ctrl.step(-1.0), 4)
+    5.4931
+    >>> ctrl.config()["settle_time"], ctrl.config()["k0"]
+    (1.0, 2.0)
     """
 
     def __new__(
@@ -384,49 +814,200 @@ class Controller:
         feedback: _Law | Sequence[_Law] | None = None,
         *,
         skew: _Skew | Sequence[_Skew | None] | None = None,
-        constraint: _Constraint = ...,
+        constraint: _Constraint = "longitudinal",
         eps: float | tuple[float, float],
-        settle_time: float = ...,
-        k0: float = ...,
+        settle_time: float = 1.0,
+        k0: float = 2.0,
         k_u: float,
-        gamma: _Gamma = ...,
-        rho_e: float | Literal["auto"] | None = ...,  # "auto": min(0.01, eps/10); None: off
-        # "auto": the paper's (exact) up to order 3, HighGain.default(order, discretization="tustin") above
-        differentiator: HighGain | Literal["auto"] | None = ...,
-        latch: _Latch = ...,
-        transition: _Transition = ...,
+        gamma: _Gamma = "log",
+        rho_e: float | Literal["auto"] | None = "auto",
+        differentiator: HighGain | Literal["auto"] | None = "auto",
+        latch: _Latch = "paper",
+        transition: _Transition = "exponential",
         initial_derivatives: Sequence[float] | None = None,
-        dtype: _DType = ...,
+        dtype: _DType = "float64",
         integral: bool = False,
         output_limits: tuple[float, float] | None = None,
         rate_limit: float | None = None,
         initial_output: float | None = None,
     ) -> Controller: ...
     @property
-    def dt(self) -> float: ...
+    def dt(self) -> float:
+        """Sample period, s."""
     @property
-    def order(self) -> int: ...
+    def order(self) -> int:
+        """System order n."""
     @property
-    def dtype(self) -> _DType: ...
+    def dtype(self) -> _DType:
+        """ "float64" or "float32"."""
     @property
-    def time(self) -> float: ...
+    def time(self) -> float:
+        """Time of the next sample, s."""
     @property
-    def diagnostics(self) -> Diagnostics: ...
+    def diagnostics(self) -> Diagnostics:
+        """What the last step did."""
     @property
-    def estimate(self) -> _F64Array: ...
+    def estimate(self) -> _F64Array:
+        """The estimate the next step will use (NumPy array; with integral
+        action the integral `I` first, then the plant's `z1..zn`).
+        """
     @property
-    def integral(self) -> bool: ...
-    def step(self, e: float, applied: float | None = None) -> float: ...
-    def step_output(self, y: float, y_d: float, applied: float | None = None) -> float: ...
-    def lint(self) -> list[str]: ...
-    def step_dt(self, e: float, dt: float, applied: float | None = None) -> float: ...
+    def integral(self) -> bool:
+        """True with integral action."""
+    def step(self, e: float, applied: float | None = None) -> float:
+        """One output-feedback step: the error sample in, the control out.
+
+        Parameters
+        ----------
+        e : float
+            The error sample ``e = y - y_d`` (output minus reference, the
+            opposite of a PID's ``setpoint - y``), unit of ``y``.
+        applied : float, default None
+            The input the actuator really gave at the previous sample, input
+            units, when known (``diagnostics.saturation_gap`` then reports the
+            gap, and the health warning can fire).
+
+        Returns
+        -------
+        float
+            The control ``v`` (input units), after ``output_limits`` and
+            ``rate_limit`` when configured.
+
+        Raises
+        ------
+        famcc.StepError
+            A non-finite ``e`` or ``applied`` (the state is unchanged), or an
+            overflow of the law.
+
+        Warns
+        -----
+        famcc.DesignWarning
+            Once, when the bounds keep expanding while the actuator has
+            headroom: ``k_u`` too small for the plant.
+        """
+    def step_output(self, y: float, y_d: float, applied: float | None = None) -> float:
+        """One step from the measured output and the reference.
+
+        The error is ``e = y - y_d`` (the opposite of a PID's
+        ``setpoint - y``); otherwise as :meth:`step`.
+
+        Parameters
+        ----------
+        y : float
+            The measured output.
+        y_d : float
+            The reference, unit of ``y``.
+        applied : float, default None
+            The input the actuator really gave at the previous sample, input
+            units, when known.
+
+        Returns
+        -------
+        float
+            The control ``v``, input units.
+
+        Raises
+        ------
+        famcc.StepError
+            A non-finite input (the state is unchanged), or an overflow.
+        """
+    def lint(self) -> list[str]:
+        """The legal but risky choices of this configuration.
+
+        Returns
+        -------
+        list of str
+            One message per finding (each was emitted as a
+            ``famcc.DesignWarning`` at construction); empty when none.
+        """
+    def step_dt(self, e: float, dt: float, applied: float | None = None) -> float:
+        """One step with a one-off sample period.
+
+        Parameters
+        ----------
+        e : float
+            The error sample ``e = y - y_d``, unit of ``y``.
+        dt : float
+            The time since the previous sample, s (``> 0``); the configured
+            ``dt`` is unchanged.
+        applied : float, default None
+            The input the actuator really gave at the previous sample, input
+            units, when known.
+
+        Returns
+        -------
+        float
+            The control ``v``, input units.
+
+        Raises
+        ------
+        famcc.StepError
+            A non-finite input or a bad ``dt`` (the state is unchanged), or an
+            overflow.
+        """
     def step_state(
         self, z: Sequence[float] | NDArray[np.floating[Any]], applied: float | None = None
-    ) -> float: ...
-    def reset(self) -> None: ...
-    def state(self) -> _F64Array: ...
-    def set_state(self, state: _F64Array) -> None: ...
-    def config(self) -> dict[str, Any]: ...
+    ) -> float:
+        """One state-feedback step with the measured error vector.
+
+        Parameters
+        ----------
+        z : sequence of float or numpy.ndarray
+            The error vector ``z = (z1, ..., zn)``, ``order`` entries,
+            ``z1 = y - y_d`` and ``z_k`` its (k-1)-th derivative (unit of ``y``
+            per s^(k-1)). With integral action the controller prepends its own
+            integral.
+        applied : float, default None
+            The input the actuator really gave at the previous sample, input
+            units, when known.
+
+        Returns
+        -------
+        float
+            The control ``v``, input units.
+
+        Raises
+        ------
+        famcc.StepError
+            ``z`` not a float sequence of the right length, a non-finite
+            input, or an overflow.
+        """
+    def reset(self) -> None:
+        """Back to the state before the first step (the configuration is kept)."""
+    def state(self) -> _F64Array:
+        """The state as a float vector.
+
+        Returns
+        -------
+        numpy.ndarray
+            float64, laid out as ``STATE_FIELDS`` followed by the estimate
+            ``z_hat[0..order]`` (with integral action ``order + 1`` entries:
+            the integral ``I`` first). :meth:`set_state` continues from it.
+        """
+    def set_state(self, state: _F64Array) -> None:
+        """Continues from a vector returned by :meth:`state`.
+
+        Parameters
+        ----------
+        state : numpy.ndarray
+            A contiguous float64 vector from :meth:`state` of a controller
+            with the same configuration.
+
+        Raises
+        ------
+        famcc.ConfigError
+            A vector of the wrong length or layout.
+        """
+    def config(self) -> dict[str, Any]:
+        """The configuration as keyword arguments of the constructor.
+
+        Returns
+        -------
+        dict
+            ``Controller(**ctrl.config())`` builds an equal controller; 'auto'
+            values appear resolved (``rho_e`` the margin in effect,
+            ``differentiator`` a :class:`HighGain` or None).
+        """
     def __copy__(self) -> Controller: ...
     def __deepcopy__(self, _memo: Any) -> Controller: ...
     def __reduce__(self) -> tuple[_Rebuild, tuple[dict[str, Any], list[float]]]: ...
@@ -435,37 +1016,186 @@ _Rebuild: TypeAlias = Callable[[dict[str, Any], list[float]], Controller]
 
 @final
 class ControllerBank:
-    """n independent copies of a configured controller."""
+    """n independent copies of a configured controller, stepped together.
+
+    Every copy starts from the controller's configuration and state; each
+    then runs on its own error sample. For Monte Carlo work: one call steps
+    all copies from a NumPy array, large batches release the GIL and are
+    split across threads, and the result equals stepping the copies one by
+    one.
+
+    Parameters
+    ----------
+    controller : Controller
+        The configuration and the state every copy starts from (copied; the
+        controller itself is not changed).
+    n : int
+        The number of copies, ``n >= 1``.
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``n < 1``.
+
+    Examples
+    --------
+    >>> import famcc, numpy as np
+    >>> ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
+    ...                         constraint="lateral", eps=0.1, k_u=5.0)
+    >>> bank = famcc.ControllerBank(ctrl, 3)
+    >>> len(bank)
+    3
+    >>> v = bank.step(np.array([-1.0, -1.0, 0.5]))
+    >>> bool(v[0] == v[1] == ctrl.step(-1.0))
+    True
+    """
 
     def __new__(cls, controller: Controller, n: int) -> ControllerBank: ...
     def __len__(self) -> int: ...
-    def step(self, e: _F64Array, on_nonfinite: Literal["raise", "hold"] = "raise") -> _F64Array: ...
-    def step_output(self, y: _F64Array, y_d: _F64Array) -> _F64Array: ...
+    def step(self, e: _F64Array, on_nonfinite: Literal["raise", "hold"] = "raise") -> _F64Array:
+        """Steps controller i with ``e[i]``; returns the outputs.
+
+        Equal to stepping the copies one by one. Large batches release the
+        GIL and are split across threads. A controller whose law overflows on
+        a valid sample consumes it and repeats its previous output (counted in
+        ``overflows``).
+
+        Parameters
+        ----------
+        e : numpy.ndarray
+            The error samples ``e = y - y_d`` (output minus reference, the
+            opposite of a PID's ``setpoint - y``), a contiguous float64 array
+            of length ``n``, unit of ``y``.
+        on_nonfinite : {'raise', 'hold'}, default 'raise'
+            'raise': a NaN or infinite entry raises ``StepError`` before any
+            controller moves. 'hold': such a lane keeps its state and repeats
+            its output, the others step, and ``held`` lists the held lanes.
+
+        Returns
+        -------
+        numpy.ndarray
+            The outputs ``v``, float64, length ``n``, input units.
+
+        Raises
+        ------
+        famcc.StepError
+            ``e`` of the wrong length or not contiguous, or a non-finite entry
+            with ``on_nonfinite='raise'``.
+        famcc.ConfigError
+            An unknown ``on_nonfinite``.
+        """
+    def step_output(self, y: _F64Array, y_d: _F64Array) -> _F64Array:
+        """Steps controller i with the error ``e[i] = y[i] - y_d[i]``; as :meth:`step`.
+
+        Parameters
+        ----------
+        y : numpy.ndarray
+            The measured outputs, float64, length ``n``.
+        y_d : numpy.ndarray
+            The references, float64, length ``n``, unit of ``y``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The outputs ``v``, float64, length ``n``, input units.
+
+        Raises
+        ------
+        famcc.StepError
+            Arrays of different or wrong length, or a non-finite entry.
+        """
     @property
-    def overflows(self) -> int: ...
+    def overflows(self) -> int:
+        """Overflowed steps in the last call of `step`."""
     @property
-    def held(self) -> tuple[int, ...]: ...
+    def held(self) -> tuple[int, ...]:
+        """The lanes held by the last `step`, in order (empty unless
+        `on_nonfinite="hold"` met non-finite entries).
+        """
     @property
-    def xi(self) -> _F64Array: ...
+    def xi(self) -> _F64Array:
+        """The constraint variables xi~ of the last step (NumPy array)."""
     @property
-    def xi_nominal(self) -> _F64Array: ...
+    def xi_nominal(self) -> _F64Array:
+        """The nominal constraint variables xi of the last step, before the
+        flexible expansion and the clamp (NumPy array). Above 1 a controller's
+        state left the nominal constraint set (docs/design.md §8).
+        """
     @property
-    def expansion(self) -> _F64Array: ...
-    def reset(self) -> None: ...
-    def controller(self, i: int) -> Controller: ...
+    def expansion(self) -> _F64Array:
+        """The flexible boundaries' expansion factors of the last step (NumPy
+        array): 1.0 while a controller's bounds are nominal, > 1 while expanded.
+        """
+    def reset(self) -> None:
+        """Resets every controller to the state before its first step."""
+    def controller(self, i: int) -> Controller:
+        """A copy of controller i, with its configuration and current state.
+
+        Parameters
+        ----------
+        i : int
+            The index; negative indices count from the end, as Python's.
+
+        Returns
+        -------
+        Controller
+            An independent copy (stepping it does not move the bank).
+
+        Raises
+        ------
+        IndexError
+            ``i`` out of range.
+        """
 
 @final
 class _CallFloor:
-    """The floor of a Python-to-Rust method call (benchmarks)."""
+    """The floor of a Python-to-Rust method call, for the benchmarks
+    (`benches/bench_step.py`): a `&mut self` method that takes and returns a
+    float, like `Controller.step`, and does nothing else.
+    """
 
     def __new__(cls) -> _CallFloor: ...
-    def step(self, e: float) -> float: ...
+    def step(self, e: float) -> float:
+        """Returns `e`."""
 
 # -- the paper's designs and plants (famcc-paper) ---------------------------------
 
 @final
 class PaperPlant:
-    """One of the paper's plants: order 2 (examples 1-2) or 3 (example 3)."""
+    """One of the paper's plants: order 2 (examples 1-2) or 3 (example 3).
+
+    The second-order plant of eq. (44) (System_sim) or the third-order plant
+    of eq. (68) (System_sim3), in variant 'paper' (as printed) or 'code' (as
+    the authors ran it; docs/errata.md): right-hand side, exact output
+    derivatives, gain and drift. ``famcc.plants`` builds on it.
+
+    Parameters
+    ----------
+    order : int
+        2 or 3.
+    variant : {'paper', 'code'}
+        The paper's printed plant or the authors' code.
+    gain : float, default 1.0
+        Factor on the input gain, dimensionless, finite and ``> 0``.
+    amp : float, default None
+        The disturbance amplitude, in the unit of the state's last entry per
+        s; None: the variant's.
+    x0 : sequence of float, default None
+        The initial state, ``order`` finite entries; None: the variant's.
+
+    Raises
+    ------
+    famcc.ConfigError
+        An order other than 2 or 3, an unknown variant, or a value above out
+        of range.
+
+    Examples
+    --------
+    >>> from famcc import _core
+    >>> plant = _core.PaperPlant(2, "paper")
+    >>> len(plant.x0), len(plant.rhs(0.0, plant.x0, 0.0))
+    (2, 2)
+    """
 
     def __new__(
         cls,
@@ -476,16 +1206,61 @@ class PaperPlant:
         x0: Sequence[float] | None = None,
     ) -> PaperPlant: ...
     @property
-    def x0(self) -> tuple[float, ...]: ...
+    def x0(self) -> tuple[float, ...]:
+        """The initial state."""
     def rhs(
         self, t: float, x: Sequence[float] | NDArray[np.floating[Any]], u: float
-    ) -> tuple[float, ...]: ...
+    ) -> tuple[float, ...]:
+        """The right-hand side ``dx/dt``.
+
+        Parameters
+        ----------
+        t : float
+            Time, s.
+        x : sequence of float
+            The state, ``order`` entries.
+        u : float
+            The input (after any saturation), input units.
+
+        Returns
+        -------
+        tuple of float
+            ``dx/dt``, ``order`` entries.
+        """
     def output_derivatives(
         self, t: float, x: Sequence[float] | NDArray[np.floating[Any]]
-    ) -> tuple[float, ...]: ...
+    ) -> tuple[float, ...]:
+        """The output and its derivatives, exactly.
+
+        Parameters
+        ----------
+        t : float
+            Time, s.
+        x : sequence of float
+            The state, ``order`` entries.
+
+        Returns
+        -------
+        tuple of float
+            ``(y, y', ..., y^(n-1))``.
+        """
     def gain_and_drift(
         self, t: float, x: Sequence[float] | NDArray[np.floating[Any]]
-    ) -> tuple[float, float]: ...
+    ) -> tuple[float, float]:
+        """The gain and drift of the fully actuated form (eq. (7) (FAS)).
+
+        Parameters
+        ----------
+        t : float
+            Time, s.
+        x : sequence of float
+            The state, ``order`` entries.
+
+        Returns
+        -------
+        (float, float)
+            ``(G_a, F_a)`` with ``y^(n) = G_a u + F_a``.
+        """
 
 def paper_design(example: int, variant: str) -> dict[str, Any]: ...
 def paper_corollary_bound(example: int) -> float: ...

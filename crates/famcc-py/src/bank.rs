@@ -16,7 +16,38 @@ const DETACH_MIN: usize = 2048;
 /// Batches at least this large are split across threads.
 const PARALLEL_MIN: usize = 16384;
 
-/// n independent copies of a configured controller.
+/// n independent copies of a configured controller, stepped together.
+///
+/// Every copy starts from the controller's configuration and state; each
+/// then runs on its own error sample. For Monte Carlo work: one call steps
+/// all copies from a NumPy array, large batches release the GIL and are
+/// split across threads, and the result equals stepping the copies one by
+/// one.
+///
+/// Parameters
+/// ----------
+/// controller : Controller
+///     The configuration and the state every copy starts from (copied; the
+///     controller itself is not changed).
+/// n : int
+///     The number of copies, ``n >= 1``.
+///
+/// Raises
+/// ------
+/// famcc.ConfigError
+///     ``n < 1``.
+///
+/// Examples
+/// --------
+/// >>> import famcc, numpy as np
+/// >>> ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
+/// ...                         constraint="lateral", eps=0.1, k_u=5.0)
+/// >>> bank = famcc.ControllerBank(ctrl, 3)
+/// >>> len(bank)
+/// 3
+/// >>> v = bank.step(np.array([-1.0, -1.0, 0.5]))
+/// >>> bool(v[0] == v[1] == ctrl.step(-1.0))
+/// True
 #[pyclass(module = "famcc._core")]
 pub struct ControllerBank {
     cores: BankCores,
@@ -156,15 +187,36 @@ impl ControllerBank {
         self.n
     }
 
-    /// Steps controller i with e[i] (`e = y - y_d`: output minus reference,
-    /// the opposite of a PID's `setpoint - y`); returns the outputs. Equal to
-    /// stepping the copies one by one. Non-finite entries raise `StepError`
-    /// before any controller moves. Large batches release the GIL and are
-    /// split across threads. A controller whose law overflows on a valid
-    /// sample consumes it and repeats its previous output (counted in
-    /// `overflows`). `on_nonfinite="hold"`: a lane whose `e` is NaN or
-    /// infinite keeps its state and repeats its output, the others step, and
-    /// `held` lists the held lanes.
+    /// Steps controller i with ``e[i]``; returns the outputs.
+    ///
+    /// Equal to stepping the copies one by one. Large batches release the
+    /// GIL and are split across threads. A controller whose law overflows on
+    /// a valid sample consumes it and repeats its previous output (counted in
+    /// ``overflows``).
+    ///
+    /// Parameters
+    /// ----------
+    /// e : numpy.ndarray
+    ///     The error samples ``e = y - y_d`` (output minus reference, the
+    ///     opposite of a PID's ``setpoint - y``), a contiguous float64 array
+    ///     of length ``n``, unit of ``y``.
+    /// on_nonfinite : {'raise', 'hold'}, default 'raise'
+    ///     'raise': a NaN or infinite entry raises ``StepError`` before any
+    ///     controller moves. 'hold': such a lane keeps its state and repeats
+    ///     its output, the others step, and ``held`` lists the held lanes.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     The outputs ``v``, float64, length ``n``, input units.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.StepError
+    ///     ``e`` of the wrong length or not contiguous, or a non-finite entry
+    ///     with ``on_nonfinite='raise'``.
+    /// famcc.ConfigError
+    ///     An unknown ``on_nonfinite``.
     #[pyo3(signature = (e, on_nonfinite = Text(String::from("raise"))),
         text_signature = "(self, /, e, on_nonfinite='raise')")]
     fn step<'py>(
@@ -195,8 +247,24 @@ impl ControllerBank {
         pyo3::types::PyTuple::new(py, &self.held)
     }
 
-    /// Steps controller i with the error `e[i] = y[i] - y_d[i]` (output minus
-    /// reference, the opposite of a PID's `setpoint - y`); as `step`.
+    /// Steps controller i with the error ``e[i] = y[i] - y_d[i]``; as :meth:`step`.
+    ///
+    /// Parameters
+    /// ----------
+    /// y : numpy.ndarray
+    ///     The measured outputs, float64, length ``n``.
+    /// y_d : numpy.ndarray
+    ///     The references, float64, length ``n``, unit of ``y``.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     The outputs ``v``, float64, length ``n``, input units.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.StepError
+    ///     Arrays of different or wrong length, or a non-finite entry.
     fn step_output<'py>(
         &mut self,
         py: Python<'py>,
@@ -251,13 +319,27 @@ impl ControllerBank {
         PyArray1::from_vec(py, v)
     }
 
-    /// Resets every controller.
+    /// Resets every controller to the state before its first step.
     fn reset(&mut self) {
         with_bank!(&mut self.cores, v => v.iter_mut().for_each(|c| c.reset()))
     }
 
-    /// A copy of controller i (as a `Controller`); negative indices count
-    /// from the end, as Python's.
+    /// A copy of controller i, with its configuration and current state.
+    ///
+    /// Parameters
+    /// ----------
+    /// i : int
+    ///     The index; negative indices count from the end, as Python's.
+    ///
+    /// Returns
+    /// -------
+    /// Controller
+    ///     An independent copy (stepping it does not move the bank).
+    ///
+    /// Raises
+    /// ------
+    /// IndexError
+    ///     ``i`` out of range.
     fn controller(&self, i: Int) -> PyResult<PyController> {
         let given = i.0;
         let n = i64::try_from(self.n).unwrap_or(i64::MAX);

@@ -4,7 +4,28 @@ use famcc_core::Real;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-/// Diagnostics of the last step (read-only).
+/// What a controller's last step did (read-only).
+///
+/// Returned by ``Controller.diagnostics``; not constructed directly. A
+/// snapshot: it does not change when the controller steps again. The
+/// attributes are the quantities of the step in the paper's notation:
+/// the constraint variables ``xi`` (eq. (28) (xi)) and ``xi~`` (eq. (31)
+/// (Wxi)), the manifold ``s`` (eq. (11) (IS)), the envelopes' bounds
+/// (eqs. (21) (xUxL), (22) (yUyL)) and their flexible expansion (eq. (30)
+/// (WxyUxyL)), and the estimate ``z_hat`` of the differentiator (eq. (34)
+/// (HGD)).
+///
+/// Examples
+/// --------
+/// >>> import famcc
+/// >>> ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
+/// ...                         constraint="lateral", eps=0.1, k_u=5.0)
+/// >>> v = ctrl.step(-1.0)
+/// >>> d = ctrl.diagnostics
+/// >>> d.v == v, d.t, d.expanded, d.saturation_gap is None
+/// (True, 0.0, False, True)
+/// >>> abs(d.xi) < 1.0
+/// True
 #[pyclass(frozen, module = "famcc._core")]
 #[derive(Clone, Debug)]
 pub struct Diagnostics {

@@ -11,13 +11,50 @@ use famcc_core::{Discretization, Real};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-/// The high-gain differentiator (eq. (34), HGD): gain `mu` (s), Hurwitz
-/// coefficients `a`, discretization "exact" (zero-order hold), "euler" or
-/// "tustin", and an optional saturation `limits` of the estimates fed to
-/// the law.
+/// The high-gain differentiator (eq. (34) (HGD)).
+///
+/// Estimates the error's derivatives ``e', ..., e^(n-1)`` from its samples
+/// for the output-feedback controller (eq. (35) (uOF)): passed as
+/// ``differentiator=`` to :class:`Controller`. Frozen, comparable and
+/// picklable; :meth:`default` builds the paper's.
+///
+/// Parameters
+/// ----------
+/// mu : float
+///     The gain's time constant ``mu``, s (``> 0``): smaller is faster and
+///     amplifies noise more.
+/// a : sequence of float
+///     The coefficients ``(a1, ..., an)``, one per order (``1..MAX_ORDER``
+///     entries), all ``> 0``, with ``s^n + a1 s^(n-1) + ... + an`` Hurwitz;
+///     dimensionless.
+/// discretization : {'exact', 'euler', 'tustin'}, default 'exact'
+///     How the continuous differentiator is discretized for the sample
+///     period: 'exact' (zero-order hold), 'euler' (forward) or 'tustin'
+///     (bilinear).
+/// limits : sequence of float, default None
+///     Saturation ``|z_hat_i| <= limit_i`` of the estimates fed to the law,
+///     one per order, in the unit of each estimate (``z_k`` in the unit of
+///     ``e`` per s^(k-1)), all ``> 0`` (``inf``: no limit for that
+///     estimate); None: no limits.
+///
+/// Raises
+/// ------
+/// famcc.ConfigError
+///     ``mu <= 0``, coefficients that are not Hurwitz, or ``limits`` of the
+///     wrong length or not ``> 0``.
+///
+/// Examples
+/// --------
+/// >>> import famcc
+/// >>> h = famcc.HighGain(0.01, [4.0, 4.0])
+/// >>> h.a, h.discretization, h.limits
+/// ((4.0, 4.0), 'exact', None)
+/// >>> famcc.HighGain.default(2) == h
+/// True
 #[pyclass(frozen, module = "famcc._core")]
 #[derive(Clone, Debug)]
 pub struct HighGain {
+    /// The gain's time constant, s.
     #[pyo3(get)]
     pub mu: f64,
     pub a: Vec<f64>,
@@ -110,7 +147,10 @@ pub fn to_array<T: Real, const N: usize>(v: &[f64]) -> Option<[T; N]> {
 #[pymethods]
 impl HighGain {
     #[new]
-    #[pyo3(signature = (mu, a, discretization = Text(DISCRETIZATION.default_name().into()), limits = None))]
+    // The defaults are famcc-core's; the Python signatures spell them out
+    // (tests/test_docs.py checks each against the default in effect).
+    #[pyo3(signature = (mu, a, discretization = Text(DISCRETIZATION.default_name().into()), limits = None),
+        text_signature = "(mu, a, discretization='exact', limits=None)")]
     fn new(mu: Num, a: Vec<Num>, discretization: Text, limits: Option<Vec<Num>>) -> PyResult<Self> {
         let (mu, discretization) = (mu.0, discretization.0.as_str());
         let a: Vec<f64> = a.into_iter().map(|x| x.0).collect();
@@ -144,11 +184,30 @@ impl HighGain {
         Ok(h)
     }
 
-    /// The paper's differentiator for an order: mu = 0.01, a = (4, 4) at
-    /// order 2, (4, 6, 4) at order 3, binomial (s + 2)^n otherwise
-    /// (famcc-core's `HighGain::paper`).
+    /// The paper's differentiator for an order (famcc-core's ``HighGain::paper``).
+    ///
+    /// Parameters
+    /// ----------
+    /// order : int
+    ///     The order n, ``1 <= order <= MAX_ORDER``.
+    /// mu : float, default 0.01
+    ///     The gain's time constant, s (the paper's).
+    /// discretization : {'exact', 'euler', 'tustin'}, default 'exact'
+    ///     As for the constructor.
+    ///
+    /// Returns
+    /// -------
+    /// HighGain
+    ///     ``a = (4, 4)`` at order 2, ``(4, 6, 4)`` at order 3, the binomial
+    ///     ``(s + 2)^n`` otherwise; no limits.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     An order outside ``1..MAX_ORDER`` or ``mu <= 0``.
     #[staticmethod]
-    #[pyo3(signature = (order, mu = PAPER_MU, discretization = DISCRETIZATION.default_name()))]
+    #[pyo3(signature = (order, mu = PAPER_MU, discretization = DISCRETIZATION.default_name()),
+        text_signature = "(order, mu=0.01, discretization='exact')")]
     fn default(order: usize, mu: f64, discretization: &str) -> PyResult<Self> {
         check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
         let mut a = vec![0.0; order];
@@ -161,12 +220,39 @@ impl HighGain {
         )
     }
 
-    /// famcc's default differentiator for an order and a sample period
-    /// `dt` (s), famcc-core's `HighGain::auto_at`: the paper's at `dt <=
-    /// 1 ms` (up to order 3), a faster `mu` that keeps the loop's delay at
-    /// slower rates (never below `dt`), exact ZOH up to order 3 while `dt <=
-    /// 0.2 mu`, Tustin otherwise.
+    /// famcc's default differentiator for an order and a sample period.
+    ///
+    /// famcc-core's ``HighGain::auto_at``: the paper's differentiator at
+    /// ``dt <= 1 ms`` (up to order 3); at slower rates a faster ``mu`` that
+    /// keeps the loop's delay (never below ``dt``, the paper's ``mu`` once
+    /// ``dt > 0.01``); the exact hold up to order 3 while ``dt <= 0.2 mu``,
+    /// Tustin otherwise.
+    ///
+    /// Parameters
+    /// ----------
+    /// order : int
+    ///     The differentiator's order (the plant's order), 1 to 8.
+    /// dt : float
+    ///     The sample period, s.
+    ///
+    /// Returns
+    /// -------
+    /// HighGain
+    ///     The differentiator famcc picks for that rate.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     If ``order`` is out of range or ``dt`` is not finite and > 0.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> h = famcc.HighGain.for_rate(3, 5e-3)   # 200 Hz
+    /// >>> round(h.mu, 6), h.discretization
+    /// (0.006, 'tustin')
     #[staticmethod]
+    #[pyo3(text_signature = "(order, dt)")]
     fn for_rate(order: usize, dt: Num) -> PyResult<Self> {
         let dt = dt.0;
         check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
@@ -185,14 +271,17 @@ impl HighGain {
         )
     }
 
+    /// The coefficients ``(a1, ..., an)``.
     #[getter]
     fn a<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
         PyTuple::new(py, &self.a)
     }
+    /// 'exact', 'euler' or 'tustin'.
     #[getter(discretization)]
     fn get_discretization(&self) -> &'static str {
         DISCRETIZATION.name(self.discretization)
     }
+    /// The estimates' limits, or None.
     #[getter(limits)]
     fn get_limits<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyTuple>>> {
         self.limits.as_ref().map(|l| PyTuple::new(py, l)).transpose()

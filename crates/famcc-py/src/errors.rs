@@ -15,8 +15,9 @@ create_exception!(
     _core,
     StepError,
     PyValueError,
-    "A step that could not be taken. For a non-finite input, `applied` or `dt` the state is unchanged; \
-     an overflow on a valid sample after the first step consumes the sample (hold the previous output)."
+    "A step that could not be taken (non-finite input, bad ``dt``, overflow).\n\nFor a non-finite \
+     ``e``, ``applied`` or ``dt`` the state is unchanged; an overflow on a valid sample after the first \
+     step consumes the sample (hold the previous output)."
 );
 
 /// famcc-core's configuration error as a Python `ConfigError`.

@@ -48,7 +48,21 @@ pub fn rho<'py>(
     map_float_or_array(py, t, |t| envelope.at(t))
 }
 
-/// A skewed law h_m (eqs. (14) SSMD, (15) NSMD), callable on floats and arrays.
+/// A skewed law h_m (eqs. (14) (SSMD), (15) (NSMD)), callable on floats and arrays.
+///
+/// Built by :func:`skewed` from a law and an optional skew; not
+/// constructible directly. ``h_m(x)`` is the skewed law, :meth:`inverse`
+/// its inverse ``h_v``.
+///
+/// Examples
+/// --------
+/// >>> import famcc
+/// >>> h = famcc.skewed(famcc.Linear(1.0), famcc.Smooth(eps_s=0.2, eps_z=0.1))
+/// >>> y = h(-1.0)
+/// >>> round(h.inverse(y), 9)
+/// -1.0
+/// >>> h.k_p
+/// 0.0
 #[pyclass(frozen, module = "famcc._core")]
 pub struct Skewed {
     law: SkewedLaw<f64>,
@@ -57,11 +71,34 @@ pub struct Skewed {
 
 #[pymethods]
 impl Skewed {
+    /// The skewed law's value ``h_m(x)``.
+    ///
+    /// Parameters
+    /// ----------
+    /// x : float or array_like
+    ///     The stage variable, in its own unit.
+    ///
+    /// Returns
+    /// -------
+    /// float or numpy.ndarray
+    ///     ``h_m(x)``, unit of ``x`` per s; an array of the shape of ``x``
+    ///     for an array.
     fn __call__<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let h = self.law;
         map_float_or_array(py, x, |v| h.eval(v))
     }
-    /// The inverse h_v(y) (bounded root search or closed form).
+    /// The inverse ``h_v(y)`` (bounded root search or closed form).
+    ///
+    /// Parameters
+    /// ----------
+    /// y : float or array_like
+    ///     A value of the law, unit of the stage variable per s.
+    ///
+    /// Returns
+    /// -------
+    /// float or numpy.ndarray
+    ///     ``x`` with ``h_m(x) = y``; an array of the shape of ``y`` for an
+    ///     array.
     fn inverse<'py>(&self, py: Python<'py>, y: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let h = self.law;
         map_float_or_array(py, y, |v| famcc_core::constraint::inverse(&h, v))

@@ -11,8 +11,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 macro_rules! law_class {
-    ($name:ident, $doc:literal, ($($field:ident),*), $build:expr) => {
-        #[doc = $doc]
+    ($(#[doc = $doc:tt])* $name:ident, ($($field:ident),*), $build:expr) => {
+        $(#[doc = $doc])*
         #[pyclass(frozen, eq, module = "famcc._core")]
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct $name {
@@ -29,13 +29,35 @@ macro_rules! law_class {
                 Ok(s)
             }
 
-            /// `h_p(x)` on a float or an array.
+            /// The law's value ``h_p(x)``.
+            ///
+            /// Parameters
+            /// ----------
+            /// x : float or array_like
+            ///     The stage variable, in its own unit.
+            ///
+            /// Returns
+            /// -------
+            /// float or numpy.ndarray
+            ///     ``h_p(x)``, unit of ``x`` per s; an array of the shape of
+            ///     ``x`` for an array.
             fn __call__<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
                 let h = self.feedback::<f64>();
                 map_float_or_array(py, x, |v| h.eval(v))
             }
 
-            /// `dh_p/dx` on a float or an array.
+            /// The law's slope ``dh_p/dx``.
+            ///
+            /// Parameters
+            /// ----------
+            /// x : float or array_like
+            ///     The stage variable, in its own unit.
+            ///
+            /// Returns
+            /// -------
+            /// float or numpy.ndarray
+            ///     ``dh_p/dx``, 1/s; an array of the shape of ``x`` for an
+            ///     array.
             fn slope<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
                 let h = self.feedback::<f64>();
                 map_float_or_array(py, x, |v| h.slope(v))
@@ -68,32 +90,165 @@ macro_rules! law_class {
 }
 
 law_class!(
+    /// Linear law ``h(s) = -k s`` (eq. (59) (lfmi)).
+    ///
+    /// A stage law ``h_p`` of the iterative manifold: it maps a stage value
+    /// ``s`` to the desired rate ``ds/dt = h_p(s)``. Callable on floats and
+    /// NumPy arrays; frozen, comparable and picklable.
+    ///
+    /// Parameters
+    /// ----------
+    /// k : float
+    ///     Gain, 1/s, ``k > 0``.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     ``k`` not finite and ``> 0``.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> h = famcc.Linear(k=2.0)
+    /// >>> h(0.5), h.slope(0.5)
+    /// (-1.0, -2.0)
     Linear,
-    "Linear law `h(s) = -k s` (eq. (59) (lfmi)).",
     (k),
     Feedback::Linear { k }
 );
 law_class!(
+    /// Finite-time law ``h(s) = -k |s|^p sign(s)``, ``0 < p < 1`` (eq. (37) (fn)).
+    ///
+    /// A stage law ``h_p`` (``ds/dt = h_p(s)``) that reaches ``s = 0`` in
+    /// finite time (Corollary 1, eq. (42) (fnT)). Callable on floats and NumPy
+    /// arrays; frozen, comparable and picklable.
+    ///
+    /// Parameters
+    /// ----------
+    /// k : float
+    ///     Gain, ``k > 0``, unit of ``s`` per s over unit of ``s`` to the
+    ///     power ``p``.
+    /// p : float
+    ///     Exponent, dimensionless, ``0 < p < 1``.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     ``k <= 0`` or ``p`` outside ``(0, 1)``.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> h = famcc.FiniteTime(k=1.0, p=0.5)
+    /// >>> h(4.0), h(-4.0)
+    /// (-2.0, 2.0)
     FiniteTime,
-    "Finite-time law `h(s) = -k |s|^p sign(s)`, `0 < p < 1` (eq. (37) (fn)).",
     (k, p),
     Feedback::FiniteTime { k, p }
 );
 law_class!(
+    /// Fixed-time law ``h(s) = -alpha |s|^p sign(s) - beta |s|^q sign(s)``, ``0 < p < 1 < q`` (eq. (61) (RFCs)).
+    ///
+    /// A stage law ``h_p`` (``ds/dt = h_p(s)``) whose settling time is bounded
+    /// independently of the initial value (Corollary 3, eq. (63) (fxTho)).
+    /// Callable on floats and NumPy arrays; frozen, comparable and picklable.
+    ///
+    /// Parameters
+    /// ----------
+    /// alpha : float
+    ///     Low-power gain, ``alpha > 0`` (unit of ``s`` per s over unit of
+    ///     ``s`` to the power ``p``).
+    /// p : float
+    ///     Low power, dimensionless, ``0 < p < 1``.
+    /// beta : float
+    ///     High-power gain, ``beta > 0`` (unit of ``s`` per s over unit of
+    ///     ``s`` to the power ``q``).
+    /// q : float
+    ///     High power, dimensionless, finite and ``q > 1``.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     A gain ``<= 0``, ``p`` outside ``(0, 1)`` or ``q <= 1``.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> h = famcc.FixedTime(alpha=1.0, p=0.5, beta=0.5, q=2.0)
+    /// >>> h(4.0)
+    /// -10.0
     FixedTime,
-    "Fixed-time law `h(s) = -alpha |s|^p sign(s) - beta |s|^q sign(s)`, `0 < p < 1 < q` (eq. (61) (RFCs)).",
     (alpha, p, beta, q),
     Feedback::FixedTime { alpha, p, beta, q }
 );
 law_class!(
+    /// Continuous variable-exponent law (eq. (45) (fxe)): exponent r_b at 0, r_1 at |s| = 1, r_t at infinity.
+    ///
+    /// ``h(s) = -k |s|^r(s) sign(s)`` with ``r(s) = a s^2 / (1 + b s^2) + r_b``,
+    /// ``b = (r_1 - r_b) / (r_t - r_1)`` and ``a = (r_t - r_b) b``: a stage law
+    /// ``h_p`` (``ds/dt = h_p(s)``) with a settling bound of Corollary 2
+    /// (eq. (53) (fxeT)). Callable on floats and NumPy arrays; frozen,
+    /// comparable and picklable.
+    ///
+    /// Parameters
+    /// ----------
+    /// k : float
+    ///     Gain, ``k > 0`` (unit of ``s`` per s at ``|s| = 1``).
+    /// r_b : float
+    ///     Exponent at ``s = 0``, dimensionless, ``0 < r_b < 1``.
+    /// r_1 : float
+    ///     Exponent at ``|s| = 1``, dimensionless, ``r_1 > 1``.
+    /// r_t : float
+    ///     Exponent as ``|s|`` tends to infinity, dimensionless, finite and
+    ///     ``r_t > r_1``.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     A rule above broken, or ``r_b`` too small for ``r_1`` and ``r_t``
+    ///     (``h`` must be strictly decreasing, paper Step B1).
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> h = famcc.VariableExponent(k=1.5, r_b=0.5, r_1=2.0, r_t=3.0)
+    /// >>> h(1.0), h(-1.0)
+    /// (-1.5, 1.5)
     VariableExponent,
-    "Continuous variable-exponent law (eq. (45) (fxe)): exponent r_b at 0, r_1 at |s| = 1, r_t at infinity.",
     (k, r_b, r_1, r_t),
     Feedback::VariableExponent { k, r_b, r_1, r_t }
 );
 law_class!(
+    /// The discontinuous variable-exponent law of Moulay et al. (eq. (58) (fvec)), for comparison only.
+    ///
+    /// ``h(s) = -beta |s|^p(s) sign(s)`` with ``p(s) = lambda_ s^2 / (1 + mu s^2)``.
+    /// Its exponent is 0 at ``s = 0``, so ``h`` jumps from ``+beta`` to
+    /// ``-beta`` across zero. Callable on floats and NumPy arrays; frozen,
+    /// comparable and picklable.
+    ///
+    /// Parameters
+    /// ----------
+    /// beta : float
+    ///     Gain, ``beta > 0`` (unit of ``s`` per s).
+    /// lambda_ : float
+    ///     Exponent numerator coefficient, ``lambda_ > 0`` (1 over unit of
+    ///     ``s`` squared).
+    /// mu : float
+    ///     Exponent denominator coefficient, finite and ``mu >= 0`` (1 over
+    ///     unit of ``s`` squared).
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     ``beta <= 0``, ``lambda_ <= 0`` or ``mu < 0``.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> h = famcc.MoulayDiscontinuous(beta=1.0, lambda_=1.0, mu=0.5)
+    /// >>> h(1e-9) < -0.99, h(-1e-9) > 0.99
+    /// (True, True)
     MoulayDiscontinuous,
-    "The discontinuous variable-exponent law of Moulay et al. (eq. (58) (fvec)), for comparison only.",
     (beta, lambda_, mu),
     Feedback::MoulayDiscontinuous {
         beta,
@@ -194,7 +349,36 @@ impl Law {
     }
 }
 
-/// Smooth skewed manifold design (SSMD, eq. (14)).
+/// Smooth skewed manifold design (SSMD, eq. (14) (SSMD)).
+///
+/// Skews a stage law: ``h_m(s) = h_p(s) + T1(s) eps_s`` with
+/// ``T1(s) = 1 - 2 S((s + eps_z) / (2 eps_z))``, so ``h_m = h_p +- eps_s``
+/// outside ``+-eps_z``. Passed as ``skew=`` to :class:`Controller` or to
+/// :func:`skewed`; frozen, comparable and picklable.
+///
+/// Parameters
+/// ----------
+/// eps_s : float
+///     Vertical offset of the skewed law outside ``+-eps_z``, ``> 0``, rate
+///     units (unit of ``s`` per s).
+/// eps_z : float
+///     Half-width of the transition zone around 0, ``> 0``, unit of ``s``.
+/// transition : {'exponential', 'cubic', 'quintic', 'sine'}, default 'exponential'
+///     The double-ended transition ``S`` of ``T1``; 'exponential' is the
+///     paper's eq. (2) (trnsS).
+///
+/// Raises
+/// ------
+/// famcc.ConfigError
+///     ``eps_s`` or ``eps_z`` not finite and ``> 0``, or an unknown
+///     ``transition``.
+///
+/// Examples
+/// --------
+/// >>> import famcc
+/// >>> h = famcc.skewed(famcc.Linear(1.0), famcc.Smooth(eps_s=0.2, eps_z=0.1))
+/// >>> round(h(-1.0), 12), h(0.0)
+/// (1.2, 0.0)
 #[pyclass(frozen, eq, module = "famcc._core")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Smooth {
@@ -205,7 +389,44 @@ pub struct Smooth {
     pub transition: Transition,
 }
 
-/// Nonsingular skewed manifold design (NSMD, eq. (15)).
+/// Nonsingular skewed manifold design (NSMD, eq. (15) (NSMD)).
+///
+/// Skews a stage law: ``h_m(s) = T2(s) (h_p(s) + T1(s) eps_s) - (1 - T2(s)) k_p s``
+/// with ``T2(s) = U(s / eps_z)`` and ``k_p = k_pp (eps_s - h_p(eps_z)) / eps_z``.
+/// Outside ``+-eps_z`` it equals ``h_p +- eps_s``; near 0 it is the line
+/// ``-k_p s``, which removes the infinite slope of power laws below 1. The
+/// widths of Corollary 3 are eqs. (62a) (NSMDie), (62b) (NSMDif). Passed as
+/// ``skew=`` to :class:`Controller` or to :func:`skewed`; frozen, comparable
+/// and picklable.
+///
+/// Parameters
+/// ----------
+/// eps_s : float
+///     Vertical offset of the skewed law outside ``+-eps_z``, ``> 0``, rate
+///     units (unit of ``s`` per s).
+/// eps_z : float
+///     Half-width of the transition zone around 0, ``> 0``, unit of ``s``.
+/// k_pp : float
+///     Slope factor, dimensionless, ``> 0``: it sets the slope ``-k_p`` of
+///     ``h_m`` at 0.
+/// transition : {'exponential', 'cubic', 'quintic', 'sine'}, default 'exponential'
+///     The double-ended transition ``S`` of ``T1`` and ``T2``; 'exponential'
+///     is the paper's eq. (2) (trnsS).
+///
+/// Raises
+/// ------
+/// famcc.ConfigError
+///     ``eps_s``, ``eps_z`` or ``k_pp`` not finite and ``> 0``, or an
+///     unknown ``transition``.
+///
+/// Examples
+/// --------
+/// >>> import famcc
+/// >>> h = famcc.skewed(famcc.FiniteTime(1.0, 0.5), famcc.Nonsingular(0.1, 0.1, 0.1))
+/// >>> h(1.0), h(-1.0)
+/// (-1.1, 1.1)
+/// >>> round(h.k_p, 6)
+/// 0.416228
 #[pyclass(frozen, eq, module = "famcc._core")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Nonsingular {
@@ -221,11 +442,14 @@ pub struct Nonsingular {
 /// The Python methods shared by the skew classes: construction with
 /// validation, the transition's name, `repr` and pickling.
 macro_rules! skew_methods {
-    ($name:ident, ($($field:ident),*)) => {
+    ($name:ident, ($($field:ident),*), $sig:tt) => {
         #[pymethods]
         impl $name {
             #[new]
-            #[pyo3(signature = ($($field,)* transition = Text(TRANSITION.default_name().into())))]
+            // The default is famcc-core's; the Python signature spells it out
+            // (tests/test_docs.py checks it against the default in effect).
+            #[pyo3(signature = ($($field,)* transition = Text(TRANSITION.default_name().into())),
+                text_signature = $sig)]
             fn new($($field: Num,)* transition: Text) -> PyResult<Self> {
                 let s = Self { $($field: $field.0,)* transition: TRANSITION.parse(&transition.0, "transition")? };
                 s.skew::<f64>().validate().map_err(config_err)?;
@@ -253,8 +477,12 @@ macro_rules! skew_methods {
     (@f64 $field:ident) => { f64 };
 }
 
-skew_methods!(Smooth, (eps_s, eps_z));
-skew_methods!(Nonsingular, (eps_s, eps_z, k_pp));
+skew_methods!(Smooth, (eps_s, eps_z), "(eps_s, eps_z, transition='exponential')");
+skew_methods!(
+    Nonsingular,
+    (eps_s, eps_z, k_pp),
+    "(eps_s, eps_z, k_pp, transition='exponential')"
+);
 
 impl Smooth {
     pub fn skew<T: Real>(&self) -> Skew<T> {

@@ -53,9 +53,39 @@ enum Which {
     Third(ThirdOrder),
 }
 
-/// One of the paper's plants (order 2: examples 1-2, order 3: example 3) in
-/// variant "paper" or "code": right-hand side, exact output derivatives,
-/// gain and drift.
+/// One of the paper's plants: order 2 (examples 1-2) or 3 (example 3).
+///
+/// The second-order plant of eq. (44) (System_sim) or the third-order plant
+/// of eq. (68) (System_sim3), in variant 'paper' (as printed) or 'code' (as
+/// the authors ran it; docs/errata.md): right-hand side, exact output
+/// derivatives, gain and drift. ``famcc.plants`` builds on it.
+///
+/// Parameters
+/// ----------
+/// order : int
+///     2 or 3.
+/// variant : {'paper', 'code'}
+///     The paper's printed plant or the authors' code.
+/// gain : float, default 1.0
+///     Factor on the input gain, dimensionless, finite and ``> 0``.
+/// amp : float, default None
+///     The disturbance amplitude, in the unit of the state's last entry per
+///     s; None: the variant's.
+/// x0 : sequence of float, default None
+///     The initial state, ``order`` finite entries; None: the variant's.
+///
+/// Raises
+/// ------
+/// famcc.ConfigError
+///     An order other than 2 or 3, an unknown variant, or a value above out
+///     of range.
+///
+/// Examples
+/// --------
+/// >>> from famcc import _core
+/// >>> plant = _core.PaperPlant(2, "paper")
+/// >>> len(plant.x0), len(plant.rhs(0.0, plant.x0, 0.0))
+/// (2, 2)
 #[pyclass(frozen, module = "famcc._core")]
 pub struct PaperPlant {
     which: Which,
@@ -67,8 +97,6 @@ fn tuple<'py, const N: usize>(py: Python<'py>, v: [f64; N]) -> PyResult<Bound<'p
 
 #[pymethods]
 impl PaperPlant {
-    /// `gain` scales the input gain, `amp` is the disturbance amplitude (the
-    /// variant's when None) and `x0` the initial state (the variant's when None).
     #[new]
     #[pyo3(signature = (order, variant, gain = 1.0, amp = None, x0 = None))]
     fn new(order: usize, variant: &str, gain: f64, amp: Option<f64>, x0: Option<Vec<f64>>) -> PyResult<Self> {
@@ -123,7 +151,21 @@ impl PaperPlant {
         }
     }
 
-    /// `dx/dt` at time `t` (s), state `x` and input `u`, as a tuple.
+    /// The right-hand side ``dx/dt``.
+    ///
+    /// Parameters
+    /// ----------
+    /// t : float
+    ///     Time, s.
+    /// x : sequence of float
+    ///     The state, ``order`` entries.
+    /// u : float
+    ///     The input (after any saturation), input units.
+    ///
+    /// Returns
+    /// -------
+    /// tuple of float
+    ///     ``dx/dt``, ``order`` entries.
     fn rhs<'py>(
         &self,
         py: Python<'py>,
@@ -138,7 +180,19 @@ impl PaperPlant {
         }
     }
 
-    /// `(y, y', ..., y^(n-1))` at time `t` and state `x`, exactly.
+    /// The output and its derivatives, exactly.
+    ///
+    /// Parameters
+    /// ----------
+    /// t : float
+    ///     Time, s.
+    /// x : sequence of float
+    ///     The state, ``order`` entries.
+    ///
+    /// Returns
+    /// -------
+    /// tuple of float
+    ///     ``(y, y', ..., y^(n-1))``.
     fn output_derivatives<'py>(
         &self,
         py: Python<'py>,
@@ -151,7 +205,19 @@ impl PaperPlant {
         }
     }
 
-    /// `(G_a, F_a)` with `y^(n) = G_a u + F_a` at time `t` and state `x`.
+    /// The gain and drift of the fully actuated form (eq. (7) (FAS)).
+    ///
+    /// Parameters
+    /// ----------
+    /// t : float
+    ///     Time, s.
+    /// x : sequence of float
+    ///     The state, ``order`` entries.
+    ///
+    /// Returns
+    /// -------
+    /// (float, float)
+    ///     ``(G_a, F_a)`` with ``y^(n) = G_a u + F_a``.
     fn gain_and_drift(&self, t: f64, x: &Bound<'_, PyAny>) -> PyResult<(f64, f64)> {
         Ok(match self.which {
             Which::Second(p) => plants::gain_and_drift(&p, t, &x.extract()?),
