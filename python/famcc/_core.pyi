@@ -530,27 +530,62 @@ class HighGain:
     def default(
         order: int, mu: float = 0.01, discretization: _Discretization = "exact"
     ) -> HighGain:
-        """staticmethod(function) -> method
+        """The paper's differentiator for an order (famcc-core's ``HighGain::paper``).
 
-        Convert a function to be a static method.
+        Parameters
+        ----------
+        order : int
+            The order n, ``1 <= order <= MAX_ORDER``.
+        mu : float, default 0.01
+            The gain's time constant, s (the paper's).
+        discretization : {'exact', 'euler', 'tustin'}, default 'exact'
+            As for the constructor.
 
-        A static method does not receive an implicit first argument.
-        To declare a static method, use this idiom:
+        Returns
+        -------
+        HighGain
+            ``a = (4, 4)`` at order 2, ``(4, 6, 4)`` at order 3, the binomial
+            ``(s + 2)^n`` otherwise; no limits.
 
-             class C:
-                 @staticmethod
-                 def f(arg1, arg2, argN):
-                     ...
-
-        It can be called either on the class (e.g. C.f()) or on an instance
-        (e.g. C().f()). Both the class and the instance are ignored, and
-        neither is passed implicitly as the first argument to the method.
-
-        Static methods in Python are similar to those found in Java or C++.
-        For a more advanced concept, see the classmethod builtin.
+        Raises
+        ------
+        famcc.ConfigError
+            An order outside ``1..MAX_ORDER`` or ``mu <= 0``.
         """
     @staticmethod
-    def for_rate(order: int, dt: float) -> HighGain: ...
+    def for_rate(order: int, dt: float) -> HighGain:
+        """famcc's default differentiator for an order and a sample period.
+
+        famcc-core's ``HighGain::auto_at``: the paper's differentiator at
+        ``dt <= 1 ms`` (up to order 3); at slower rates a faster ``mu`` that
+        keeps the loop's delay (never below ``dt``, the paper's ``mu`` once
+        ``dt > 0.01``); the exact hold up to order 3 while ``dt <= 0.2 mu``,
+        Tustin otherwise.
+
+        Parameters
+        ----------
+        order : int
+            The differentiator's order (the plant's order), 1 to 8.
+        dt : float
+            The sample period, s.
+
+        Returns
+        -------
+        HighGain
+            The differentiator famcc picks for that rate.
+
+        Raises
+        ------
+        famcc.ConfigError
+            If ``order`` is out of range or ``dt`` is not finite and > 0.
+
+        Examples
+        --------
+        >>> import famcc
+        >>> h = famcc.HighGain.for_rate(3, 5e-3)   # 200 Hz
+        >>> round(h.mu, 6), h.discretization
+        (0.006, 'tustin')
+        """
     @property
     def mu(self) -> float:
         """The gain's time constant, s."""
