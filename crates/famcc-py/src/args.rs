@@ -5,8 +5,9 @@
 
 use crate::differentiator::HighGain;
 use crate::errors::ConfigError;
-use crate::laws::{Law, SkewSpec};
+use crate::laws::Law;
 use crate::names::{ConstraintName, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
+use crate::skews::SkewSpec;
 use crate::spec::{RhoE, Spec};
 use famcc_core::config::{check_order, MAX_ORDER};
 use famcc_core::{differentiator, Constraint};

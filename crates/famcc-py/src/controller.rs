@@ -6,189 +6,25 @@ use crate::args::{Args, DiffArg, RhoArg, AUTO};
 use crate::diagnostics::Diagnostics;
 use crate::dispatch::Core;
 use crate::errors::{config_err, step_err, ConfigError, StepError};
+use crate::health::design_warning;
 use crate::names::{CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::number::{Int, Num, Text};
 use crate::spec::{RhoE, Spec};
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use numpy::{PyArray1, PyReadonlyArray1};
-use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
-use std::ffi::CString;
 
-/// The FAMCC controller: fully actuated manifold constraint control.
-///
-/// A model-free output-feedback controller for an unknown strict-feedback
-/// plant of order n (eq. (5) (SFS)). It drives the tracking error to the
-/// preset accuracy ``eps`` within the preset time ``settle_time`` and keeps
-/// working when the actuator saturates. The sign convention of every step
-/// method is ``e = y - y_d`` (the output minus the reference: the opposite of
-/// a PID's ``setpoint - y``); :meth:`step_output` takes ``y`` and ``y_d`` and
-/// forms it.
-///
-/// Parameters
-/// ----------
-/// order : int
-///     The plant's order n (the relative degree of the output),
-///     ``1 <= order <= MAX_ORDER``.
-/// dt : float
-///     Sample period, s (``> 0``); :meth:`step_dt` takes a one-off period.
-/// feedback : Linear, FiniteTime, FixedTime, VariableExponent, MoulayDiscontinuous or a sequence of them, default None
-///     The stage laws ``h_p`` of the iterative manifold (eq. (11) (IS)): one
-///     law for every stage, or a list of ``order - 1`` (``order`` with
-///     integral action), first stage first. Required at order >= 2; omitted
-///     (or empty) at order 1, which has no stages.
-/// skew : Smooth, Nonsingular, None or a sequence of them, default None
-///     The skews of the stage laws (eqs. (14) (SSMD), (15) (NSMD)): one for
-///     every stage, or one per stage (a None entry: that stage unskewed).
-///     None: no stage is skewed.
-/// constraint : {'longitudinal', 'lateral', 'oblique'}, default 'longitudinal'
-///     The manifold constraint (paper Step C1): LoMC constrains ``s``
-///     itself, LaMC ``s_{n-1} - h_v(ds_{n-1})``, OMC the oblique combination
-///     of both (eq. (27) (xyc)).
-/// eps : float or (float, float)
-///     Final half-widths of the constraint (required): ``eps_y`` (unit of
-///     ``s``) for 'longitudinal', ``eps_x`` (unit of ``s_{n-1}``) for
-///     'lateral', the pair ``(eps_x, eps_y)`` for 'oblique'. With the
-///     paper's choice ``eps_x = eps_z`` at order 2 it is the output accuracy,
-///     in the unit of ``y``.
-/// settle_time : float, default 1.0
-///     Preset settling time ``T_s`` of the envelopes (eqs. (21) (xUxL),
-///     (22) (yUyL)), s (``> 0``).
-/// k0 : float, default 2.0
-///     Initial-width factor of the envelopes, dimensionless, ``k0 > 1``
-///     (eqs. (21)-(22)).
-/// k_u : float
-///     Control gain ``k_u > 0`` (required), input units: the output is
-///     ``v = -k_u Gamma(xi)`` (eq. (29) (uT)).
-/// gamma : {'log', 'rational'}, default 'log'
-///     The map ``Gamma`` of eq. (29) (uT): 'log' is
-///     ``ln((1 + xi)/(1 - xi)) = 2 atanh(xi)``, 'rational' is
-///     ``xi / ((1 + xi)(1 - xi))``.
-/// rho_e : float, 'auto' or None, default 'auto'
-///     The flexible-boundary margin ``rho_e`` of eq. (30) (WxyUxyL), in the
-///     unit of the constrained variable: 'auto' is ``min(0.01, eps / 10)``
-///     (the smallest final width), None turns the flexible boundary off.
-///     :meth:`config` shows the margin in effect.
-/// differentiator : HighGain, 'auto' or None, default 'auto'
-///     The high-gain differentiator (eq. (34) (HGD)) that estimates
-///     ``e', ..., e^(n-1)`` from ``e`` (eq. (35) (uOF)): 'auto' is the
-///     paper's (exact) up to order 3 and
-///     ``HighGain.default(order, discretization="tustin")`` above, none at
-///     order 1 (which needs none); None: state feedback only
-///     (:meth:`step_state`).
-/// latch : {'paper', 'authors'}, default 'paper'
-///     How the envelopes' initial width is latched from the first sample's
-///     offset ``s0``: 'paper' (text after eq. (22) (yUyL))
-///     ``rho0 = k0 max(|s0|, eps)``, 'authors' (the authors' code)
-///     ``rho0 = max(k0 |s0|, eps)``.
-/// transition : {'exponential', 'cubic', 'quintic', 'sine'}, default 'exponential'
-///     The transition ``S`` of the flexible boundary: 'exponential' is the
-///     paper's eq. (2) (trnsS), C-infinity; 'cubic' ``3z^2 - 2z^3``;
-///     'quintic' ``10z^3 - 15z^4 + 6z^5``; 'sine' ``(1 - cos(pi z)) / 2``.
-/// initial_derivatives : sequence of float, default None
-///     The differentiator's initial estimates of ``(z2, ..., zn)``
-///     (``order - 1`` entries, ``z_k`` in the unit of ``e`` per s^(k-1));
-///     None: zeros.
-/// dtype : {'float64', 'float32'}, default 'float64'
-///     The float type of the core's arithmetic (the API takes and returns
-///     Python floats either way).
-/// integral : bool, default False
-///     Integral action (docs/design.md §3.8). The law of order
-///     ``n + 1`` acts on ``(I, e, e', ..., e^(n-1))`` with ``I`` the exact integral
-///     of the measured error (rectangle rule), so a constant load is carried by
-///     ``I`` and the error tends to 0. ``feedback`` and ``skew`` then have ``order``
-///     entries (one per stage of the order ``n + 1`` law), the differentiator keeps
-///     ``order`` coefficients (it runs on ``e``), ``initial_derivatives`` stay the
-///     plant's ``(z2..zn)``. The integral is separated (anti-windup): ``e`` is
-///     integrated only while ``|s| <= eps`` (the final band) and not while the
-///     output is beyond a known limit with ``e`` pushing it further. Needs
-///     ``order < MAX_ORDER``.
-/// output_limits : (float, float), default None
-///     Magnitude limits ``(lo, hi)`` of the output, ``lo < hi``, input units.
-///     :meth:`step` returns the limited output; it counts as the
-///     applied input for the integral separation and the health count, and
-///     ``diagnostics.v_unlimited`` keeps the law's own output.
-/// rate_limit : float, default None
-///     The output's largest rate of change, input units per second.
-/// initial_output : float, default None
-///     Bumpless start, input units: the first step's output equals
-///     ``initial_output`` when that is feasible (with integral action by the
-///     choice of ``I_0``; without, by rescaling the latched widths), else the
-///     nearest feasible output.
-///
-/// Raises
-/// ------
-/// famcc.ConfigError
-///     An invalid value or combination; the message names the parameter
-///     and the rule.
-///
-/// Warns
-/// -----
-/// famcc.DesignWarning
-///     At construction, once per legal but risky choice (:meth:`lint`): dt too
-///     coarse for mu, a last-stage law that chatters when sampled, rho_e too
-///     large for eps, no estimate limits at differentiator order >= 4, the
-///     exact ZOH at order >= 4. While stepping with the applied input known
-///     (``applied`` passed or ``output_limits`` set), once, when the bounds
-///     were expanded although the actuator had headroom for half the envelope's
-///     settling time in total (``diagnostics.unsaturated_expansions >=
-///     0.5 settle_time / dt``: persistent, not a start-up transient or the
-///     recovery after a saturation): ``k_u`` too small for the plant.
-///
-/// See Also
-/// --------
-/// ControllerBank : n copies stepped together from an array.
-/// famcc.design : a design from the plant's limits and the wanted accuracy.
-///
-/// Notes
-/// -----
-/// The output is the flexible manifold constraint controller
-/// ``v = -k_u Gamma(xi~)`` (eqs. (31) (Wxi), (32) (WuT)) on the iterative
-/// manifold ``s = s_n`` (eq. (11) (IS)), fed by the differentiator's
-/// estimate (eq. (35) (uOF)). The defaults are famcc-core's (every example
-/// of the paper). A controller can be copied, pickled, and continued from
-/// :meth:`state`.
-///
-/// Examples
-/// --------
-/// Example 1 of the paper (LaMC, finite-time law):
-///
-/// >>> import famcc
-/// >>> ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5),
-/// ...                         constraint="lateral", eps=0.1, k_u=5.0)
-/// >>> round(ctrl.step(-1.0), 4)
-/// 5.4931
-/// >>> ctrl.config()["settle_time"], ctrl.config()["k0"]
-/// (1.0, 2.0)
+// The class docstring (numpydoc, also the stub's) is its own file.
+#[doc = include_str!("docs/controller.md")]
+#[allow(clippy::doc_lazy_continuation)] // ">>>" doctest prompts are not quotes
 #[pyclass(module = "famcc._core", name = "Controller")]
 #[derive(Clone)]
 pub struct PyController {
     pub core: Core,
     pub spec: Spec,
     /// The health warning was given (once per controller).
-    health_warned: bool,
-}
-
-/// The health warning fires once the bounds were expanded with headroom
-/// for this fraction of the envelope's settling time `T_s` (in samples).
-const HEALTH_FRACTION: f64 = 0.5;
-
-/// `2 atanh 0.5 = ln 3`: `k_u` must exceed the hold input divided by it.
-const TWO_ATANH_HALF: f64 = 1.0986122886681098;
-
-/// Emits `famcc.DesignWarning` (a `UserWarning` when famcc's Python package
-/// is not importable).
-pub fn design_warning(py: Python<'_>, message: &str) -> PyResult<()> {
-    let category = match py
-        .import("famcc._common")
-        .and_then(|m| m.getattr("DesignWarning"))
-    {
-        Ok(c) => c,
-        Err(_) => py.get_type::<PyUserWarning>().into_any(),
-    };
-    let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
-    PyErr::warn(py, &category, &text, 2)
+    pub(crate) health_warned: bool,
 }
 
 impl PyController {
@@ -206,40 +42,6 @@ impl PyController {
 
     pub fn set_state_vec(&mut self, v: &[f64]) -> PyResult<()> {
         self.core.set_state(v)
-    }
-
-    /// After a successful step: the health warning, once, when the bounds
-    /// expanded while the actuator had headroom (only counted when the
-    /// applied input is known, so nothing to check otherwise).
-    #[inline]
-    fn check_health(&mut self, applied: Option<f64>) -> PyResult<()> {
-        if self.health_warned || (applied.is_none() && self.spec.output_limits.is_none()) {
-            return Ok(());
-        }
-        let n = self.core.unsaturated_expansions();
-        // Persistent, not a transient: expanded with headroom for half the
-        // envelope's settling time in total (the flexible boundary's recovery
-        // after a saturation, or a start-up transient, stays below it).
-        let persistent = (HEALTH_FRACTION * self.spec.settle_time / self.spec.dt)
-            .ceil()
-            .max(1.0);
-        if (n as f64) < persistent {
-            return Ok(());
-        }
-        self.health_warned = true;
-        let (v, k_u) = self.core.last_unlimited();
-        let suggested = (2.0 * k_u).max(v.abs() / TWO_ATANH_HALF);
-        Python::attach(|py| {
-            design_warning(
-                py,
-                &format!(
-                    "k_u too small for this plant: the bounds expanded {n} times while the actuator had \
-                     headroom; raise k_u to {suggested:.3} (k_u >= |u_hold| / (2 atanh 0.5), u_hold the \
-                     input that holds the error still, about |v| = {:.3} here) or lower rho_e",
-                    v.abs()
-                ),
-            )
-        })
     }
 }
 
@@ -584,24 +386,4 @@ impl PyController {
 /// A signature default for a text argument.
 fn text(s: &str) -> Text {
     Text(String::from(s))
-}
-
-/// The floor of a Python-to-Rust method call, for the benchmarks
-/// (`benches/bench_step.py`): a `&mut self` method that takes and returns a
-/// float, like `Controller.step`, and does nothing else.
-#[pyclass(module = "famcc._core", name = "_CallFloor")]
-#[derive(Default)]
-pub struct CallFloor;
-
-#[pymethods]
-impl CallFloor {
-    #[new]
-    fn new() -> Self {
-        Self
-    }
-
-    /// Returns `e`.
-    fn step(&mut self, e: f64) -> f64 {
-        e
-    }
 }

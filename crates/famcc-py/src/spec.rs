@@ -3,8 +3,9 @@
 //! what famcc-core's builder is fed.
 
 use crate::differentiator::{to_array, HighGain};
-use crate::laws::{Law, SkewSpec};
+use crate::laws::Law;
 use crate::names::DType;
+use crate::skews::SkewSpec;
 use famcc_core::{Config, ConfigError, Constraint, Gamma, Latch, Real, Transition};
 
 /// The flexible-boundary margin as given.
