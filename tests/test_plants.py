@@ -317,6 +317,22 @@ def test_generic_plant_rejects_bad_arguments(kwargs, match):
         plants.StrictFeedback(**kwargs)
 
 
+@pytest.mark.parametrize(
+    ("kwargs", "name"),
+    [
+        ({"g": lambda x, t: 1.0, "f": [lambda x, t: 0.0]}, "g"),
+        ({"g": [lambda x, t: 1.0], "f": lambda x, t: 0.0}, "f"),
+        ({"g": 2.0, "f": [lambda x, t: 0.0]}, "g"),
+        ({"g": [lambda x, t: 1.0], "f": "x**2"}, "f"),
+    ],
+)
+def test_generic_plant_asks_for_one_callable_per_state(kwargs, name):
+    # A single callable (or a number or a string) where a sequence is meant:
+    # the error names the argument and shows the expected form.
+    with pytest.raises(TypeError, match=rf"^{name} must be a sequence of callables, one per state"):
+        plants.StrictFeedback(x0=[0.0], **kwargs)
+
+
 def test_base_plant_reports_what_it_cannot_do():
     plant = plants.Plant(1, [0.0], name="bare")
     with pytest.raises(NotImplementedError):

@@ -216,6 +216,14 @@ class StrictFeedback(Plant):
         output: Any = None,
         input: Any = None,
     ) -> None:
+        for label, fns in (("g", g), ("f", f)):
+            if callable(fns) or isinstance(fns, (str, bytes)) or not hasattr(fns, "__iter__"):
+                raise TypeError(
+                    f"{label} must be a sequence of callables, one per state "
+                    f"({label}=[{label}_1, ..., {label}_n], each {label}_i(x, t) -> float), "
+                    f"got {type(fns).__name__}; e.g. for a second-order plant "
+                    f"{label}=[lambda x, t: ..., lambda x, t: ...]"
+                )
         g, f = list(g), list(f)
         if len(g) == 0 or len(g) != len(f):
             raise ValueError(
