@@ -63,19 +63,9 @@ export CARGO_PROFILE_TEST_OPT_LEVEL=1 CARGO_PROFILE_DEV_OPT_LEVEL=1
 export CARGO_PROFILE_TEST_DEBUG=0 CARGO_PROFILE_DEV_DEBUG=0
 # famcc-core is generic: every test binary compiles the mutated code anew, so
 # the test targets are what a mutant costs (--cargo-arg: built and run, the
-# build step included). Full runs: every unit and
-# integration test (no doctests, examples or benches).
+# build step included): every unit and integration test (no doctests,
+# examples or benches). The integration tests are one binary for that reason.
 all_tests=(--cargo-arg=--lib --cargo-arg=--tests)
-# The slice: the unit tests and the integration tests that check values
-# (step() by hand and from the authors' functions, the properties, the
-# differentiator, the latch), the measured closed-loop outcomes, the design
-# rules, the options beyond the paper, the clamp count and the recovery and
-# validation rules.
-slice_tests=(--cargo-arg=--lib)
-for t in step_values golden properties differentiator latch closed_loop_outcomes design options no_flexible_clamp recovery; do
-    slice_tests+=("--cargo-arg=--test=$t")
-done
-
 core() { # out-dir, args... -> cargo mutants on famcc-core
     local out=$1 && shift
     mkdir -p "target/mutants/$out"
@@ -95,7 +85,7 @@ slice)
     # fixed timeout per mutant instead (a mutant whose tests hang is caught).
     rc=0
     mkdir -p "target/mutants/${MUTANTS_OUT:-slice}"
-    cargo mutants --no-shuffle --output "target/mutants/${MUTANTS_OUT:-slice}" "${slice_tests[@]}" \
+    cargo mutants --no-shuffle --output "target/mutants/${MUTANTS_OUT:-slice}" "${all_tests[@]}" \
         --shard "$((seed % shards))/$shards" --sharding round-robin \
         --baseline skip --timeout "${MUTANTS_TIMEOUT:-180}" "$@" || rc=$?
     case " $* " in *" --list "*) exit "$rc" ;; esac

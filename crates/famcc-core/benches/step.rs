@@ -3,7 +3,7 @@
 //! Run with `cargo bench -p famcc-core --bench step` (about 2 minutes on 2 cores).
 //!
 //! What is measured:
-//! - the paper's three designs (tests/common: `example1/2/3`, variant "code"),
+//! - the paper's three designs (tests/suite/common: `example1/2/3`, variant "code"),
 //!   f64 and f32, in two phases: `transient` (the first 1000 samples, t < T_s = 1 s,
 //!   envelope still shrinking, latch at the first sample) and `settled`
 //!   (samples 1000..10000, t >= T_s);
@@ -15,7 +15,7 @@
 //!   how the cost scales with the order.
 //!
 //! Inputs are errors recorded from closed-loop runs (plants and RK4 from
-//! tests/common, dt = 1 ms, 10 s). One criterion iteration replays one chunk of
+//! tests/suite/common, dt = 1 ms, 10 s). One criterion iteration replays one chunk of
 //! [`CHUNK`] = 1000 recorded samples from a saved controller state, so criterion's
 //! time per iteration in microseconds is the time per step in nanoseconds.
 //!
@@ -28,7 +28,7 @@
     clippy::panic
 )]
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/suite/common/mod.rs"]
 pub mod common;
 
 use std::hint::black_box;

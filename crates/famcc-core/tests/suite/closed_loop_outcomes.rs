@@ -10,11 +10,11 @@
 //! in `closed_loop_random.rs`.
 //!
 //! After an intended change of behaviour, print the new table with
-//! `FAMCC_PRINT_OUTCOMES=1 cargo test -p famcc-core --test closed_loop_outcomes -- --nocapture`,
+//! `FAMCC_PRINT_OUTCOMES=1 cargo test -p famcc-core --test suite -- closed_loop_outcomes:: --nocapture`,
 //! paste it over [`COMMITTED`] and say why in the commit.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
+use crate::common;
 use common::*;
 
 const DT: f64 = 1e-3;

@@ -17,7 +17,7 @@
 //! not claimed: with tight limits the accuracy may be out of reach.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
+use crate::common;
 
 use common::*;
 use famcc_core::{Controller, Real};

@@ -20,7 +20,7 @@
 //!
 //! ```sh
 //! FAMCC_FUZZ_CASES=40000 FAMCC_FUZZ_SEED=$RANDOM cargo test --profile checked -p famcc-core \
-//!     --test fuzz -- --nocapture
+//!     --test suite -- fuzz:: --nocapture
 //! ```
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 

@@ -4,7 +4,7 @@
 //! Run with `--nocapture` to see the measured figures.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
+use crate::common;
 use common::*;
 use famcc_core::bounds;
 

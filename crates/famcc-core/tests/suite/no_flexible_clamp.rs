@@ -19,7 +19,7 @@
 //!   the controller stays finite and never fails throughout.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
+use crate::common;
 
 use common::*;
 use famcc_core::{Config, Constraint, Controller, Feedback, Gamma, Real};

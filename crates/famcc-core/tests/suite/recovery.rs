@@ -1,10 +1,10 @@
 //! Reliability (docs/design.md §3.7, §3.9, §3.10): bounded recovery from
 //! any finite input, validation of configurations that could never run, a
 //! clock exact for 10^10 steps, and `restore` checking every field. The
-//! randomized counterpart is `tests/fuzz.rs`.
+//! randomized counterpart is `tests/suite/fuzz.rs`.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
+use crate::common;
 
 use common::{rk4, Second, Third, Variant};
 use famcc_core::{

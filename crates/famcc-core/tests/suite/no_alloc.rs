@@ -6,7 +6,7 @@
 //! all checks still live in one `#[test]` so nothing else runs on this thread.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
+use crate::common;
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

@@ -36,7 +36,7 @@
 //! (-66) is the estimate's lag behind the true z3 at mu = 0.01, not peaking.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
+use crate::common;
 
 use common::*;
 use famcc_core::Controller;

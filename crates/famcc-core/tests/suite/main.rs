@@ -1,0 +1,29 @@
+//! The integration tests of famcc-core, in one test binary: the generic core
+//! is compiled once for all of them rather than once per file, which is what
+//! a build (and a mutant, docs/mutation.md) costs. Each module is one subject;
+//! `cargo test -p famcc-core --test suite -- step_values::` runs one of them.
+
+mod common;
+
+mod auto_high_order;
+mod clock_restore;
+mod closed_loop;
+mod closed_loop_outcomes;
+mod closed_loop_random;
+mod design;
+mod differentiator;
+mod estimate_saturation;
+mod f32_vs_f64;
+mod fuzz;
+mod golden;
+mod latch;
+mod no_alloc;
+mod no_flexible_clamp;
+mod options;
+mod options_proptest;
+mod properties;
+mod rate_rules;
+mod recovery;
+mod step_proptest;
+mod step_values;
+mod worst_case;
