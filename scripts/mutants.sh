@@ -69,7 +69,11 @@ all_tests=(--cargo-arg=--lib --cargo-arg=--tests)
 core() { # out-dir, args... -> cargo mutants on famcc-core
     local out=$1 && shift
     mkdir -p "target/mutants/$out"
-    cargo mutants --no-shuffle --output "target/mutants/$out" "${excludes[@]}" "$@"
+    # In the source's order, unless --shuffle is given (a run that may be
+    # stopped early is then still a uniform sample of its shard).
+    local order=--no-shuffle
+    case " $* " in *" --shuffle "*) order= ;; esac
+    cargo mutants ${order:+"$order"} --output "target/mutants/$out" "${excludes[@]}" "$@"
 }
 
 case "$mode" in
