@@ -73,8 +73,8 @@ pub mod transition;
 pub use config::{Config, ConfigBuilder};
 pub use constraint::Constraint;
 pub use controller::{
-    probe_error, probe_errors, Controller, Diagnostics, Snapshot, PROBE_COUNT, PROBE_LIMIT, PROBE_PER_DECADE,
-    RECOVERY_SAMPLES, SNAPSHOT_FIELDS,
+    probe_error, probe_errors, Controller, Diagnostics, Health, Snapshot, PROBE_COUNT, PROBE_LIMIT,
+    PROBE_PER_DECADE, RECOVERY_SAMPLES, SNAPSHOT_FIELDS,
 };
 pub use differentiator::{DiscreteHgd, Discretization, HighGain};
 pub use envelope::{Envelope, Latch};

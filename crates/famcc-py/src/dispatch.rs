@@ -103,15 +103,10 @@ impl Core {
         with_core!(self, c => c.config().lint().iter().map(|f| f.to_string()).collect())
     }
 
-    /// Expansions while the actuator had headroom, so far.
+    /// The core's health finding (`Controller::health`), if any.
     #[inline]
-    pub fn unsaturated_expansions(&self) -> u64 {
-        with_core!(self, c => c.unsaturated_expansions())
-    }
-
-    /// The last output before the output limits, and `k_u`.
-    pub fn last_unlimited(&self) -> (f64, f64) {
-        with_core!(self, c => (c.diagnostics().v_unlimited.to_f64_lossless(), c.config().k_u().to_f64_lossless()))
+    pub fn health(&self) -> Option<famcc_core::Health> {
+        with_core!(self, c => c.health())
     }
 
     pub fn step_output(&mut self, y: f64, y_d: f64, applied: Option<f64>) -> Result<f64, StepError> {

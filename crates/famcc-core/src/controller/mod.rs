@@ -45,6 +45,7 @@
 
 mod clock;
 mod diagnostics;
+mod health;
 mod output;
 mod probe;
 mod recover;
@@ -53,6 +54,7 @@ mod start;
 mod steps;
 
 pub use diagnostics::Diagnostics;
+pub use health::{Health, HEALTH_FRACTION};
 pub(crate) use probe::probe;
 pub use probe::{probe_error, probe_errors, PROBE_COUNT, PROBE_LIMIT, PROBE_PER_DECADE};
 pub use recover::RECOVERY_SAMPLES;

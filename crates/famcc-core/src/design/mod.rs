@@ -47,6 +47,19 @@ pub const MU_PER_DT: f64 = 10.0;
 pub const MU_PER_SETTLE: f64 = 0.05;
 /// `xi` at which the law holds `hold_input` (`k_u = hold / (2 atanh(XI_HOLD))`).
 pub const XI_HOLD: f64 = 0.5;
+
+/// The smallest gain that holds the input `hold` with the constraint variable
+/// at [`XI_HOLD`]: `k_u = |hold| / (2 atanh(XI_HOLD))` (log Gamma, eq. (29):
+/// `k_u Gamma(1/2) = k_u ln 3`). Used by [`design`] and by the run-time health
+/// rule ([`crate::controller::Health`]).
+///
+/// ```
+/// let k_u = famcc_core::design::k_u_to_hold(2.0);
+/// assert!((k_u * 3.0_f64.ln() - 2.0).abs() < 1e-12);
+/// ```
+pub fn k_u_to_hold(hold: f64) -> f64 {
+    num_traits::Float::abs(hold) / (2.0 * num_traits::Float::atanh(XI_HOLD))
+}
 /// A sampled-loop spectral radius from which the design warns (and widens
 /// its time scales when it can).
 pub const RADIUS_WARN: f64 = 0.9999;

@@ -3,7 +3,7 @@
 
 use super::{
     check, linear, Check, Design, Level, Requirements, Rule, ESTIMATE_FACTOR, ESTIMATE_ORDER, MAX_CHECKS,
-    MAX_ORDER, MU_PER_SETTLE, RADIUS_WARN, RATIO_ORDER, XI_HOLD,
+    MAX_ORDER, MU_PER_SETTLE, RADIUS_WARN, RATIO_ORDER,
 };
 use crate::differentiator::auto_discretization_at;
 use crate::error::ConfigError;
@@ -75,7 +75,7 @@ pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
     // beyond a law of order 3 that overcounts (measured: flexible joint and
     // integrator chains of orders 4-6 settle only with the order-3 ratio, and
     // stay stable with it), so the ratio stops growing at order 3.
-    let k_u = F::max(req.hold_input, 0.05 * u_scale) / (2.0 * F::atanh(XI_HOLD));
+    let k_u = super::k_u_to_hold(F::max(req.hold_input, 0.05 * u_scale));
     let mut d = Design {
         law_order: n_law,
         integral,

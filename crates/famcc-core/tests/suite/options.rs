@@ -208,6 +208,61 @@ fn the_health_count_sees_expansions_with_headroom() {
 }
 
 #[test]
+fn the_health_rule_fires_exactly_at_half_the_settling_time_and_suggests_the_hold_gain() {
+    // T_s = 1 s at 1 kHz: persistent from 500 expansions with headroom.
+    let b = builder::<f64, 2>(0.3)
+        .output_limits(Some((-100.0, 100.0)))
+        .rho_e(Some(0.1));
+    let mut c = Controller::new(b.build().unwrap());
+    assert_eq!(c.persistent_expansions(), 500);
+    let mut p = Plant {
+        x: 0.5,
+        v: 0.0,
+        d: 2.0,
+    };
+    let (mut prev, mut fired) = (None, None);
+    for k in 0..4000 {
+        let u = c.step_output(p.x, 0.0, prev).unwrap();
+        p.advance(u);
+        prev = Some(u);
+        let n = c.unsaturated_expansions();
+        assert_eq!(c.health().is_some(), n >= 500, "step {k}: {n} expansions");
+        if fired.is_none() && n >= 500 {
+            fired = c.health().map(|h| (h, c.diagnostics().v_unlimited.abs()));
+        }
+    }
+    let (h, v) = fired.expect("k_u = 0.3 cannot hold the load 2 within the bounds");
+    assert_eq!(h.expansions, 500);
+    // The cure: the larger of 2 k_u and |v| / ln 3, v the law's last output.
+    assert_eq!(h.hold, v);
+    assert!(
+        (h.suggested_k_u - f64::max(0.6, v / 3.0_f64.ln())).abs() < 1e-15,
+        "{h:?}"
+    );
+    let text = h.to_string();
+    assert!(text.contains("expanded 500 times"), "{text}");
+    assert!(
+        text.contains(&format!("raise k_u to {:.3}", h.suggested_k_u)),
+        "{text}"
+    );
+    // A gain that holds the load never fires (nor does a loop that never
+    // learns its applied input).
+    let (_, good) = regulate(
+        builder::<f64, 2>(h.suggested_k_u)
+            .output_limits(Some((-100.0, 100.0)))
+            .rho_e(Some(0.1)),
+        2.0,
+        4.0,
+    );
+    assert_eq!(good.health(), None, "{}", good.unsaturated_expansions());
+    // The threshold: at least one sample, whatever T_s / dt.
+    let tiny = builder::<f64, 2>(1.0).settle_time(1e-6).build().unwrap();
+    assert_eq!(Controller::new(tiny).persistent_expansions(), 1);
+    let f32c = Controller::new(builder::<f32, 2>(1.0).settle_time(0.25).build().unwrap());
+    assert_eq!(f32c.persistent_expansions(), 125);
+}
+
+#[test]
 fn an_unstable_discretized_differentiator_is_a_config_error() {
     let euler = |dt: f64| {
         Config::<f64, 2>::builder(
