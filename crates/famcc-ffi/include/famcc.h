@@ -1,5 +1,5 @@
 /*
- * famcc: C ABI of the FAMCC controller (famcc-core), orders 2 and 3, float and double.
+ * famcc: C ABI of the FAMCC controller (famcc-core), orders 1 to 6, float and double.
  *
  * No allocation: the caller owns the storage (FamccO2F32 etc., fixed size and
  * alignment, usable as static or stack objects). Every function returns a
@@ -25,42 +25,79 @@
 #include <stddef.h>
 
 /**
+ * 64-bit words of `FamccO1F32` (the controller, its tag and headroom).
+ */
+#define FAMCC_O1_F32_WORDS 56
+
+/**
+ * 64-bit words of `FamccO1F64` (the controller, its tag and headroom).
+ */
+#define FAMCC_O1_F64_WORDS 104
+
+/**
+ * 64-bit words of `FamccO2F32` (the controller, its tag and headroom).
+ */
+#define FAMCC_O2_F32_WORDS 72
+
+/**
+ * 64-bit words of `FamccO2F64` (the controller, its tag and headroom).
+ */
+#define FAMCC_O2_F64_WORDS 128
+
+/**
+ * 64-bit words of `FamccO3F32` (the controller, its tag and headroom).
+ */
+#define FAMCC_O3_F32_WORDS 88
+
+/**
+ * 64-bit words of `FamccO3F64` (the controller, its tag and headroom).
+ */
+#define FAMCC_O3_F64_WORDS 152
+
+/**
+ * 64-bit words of `FamccO4F32` (the controller, its tag and headroom).
+ */
+#define FAMCC_O4_F32_WORDS 104
+
+/**
+ * 64-bit words of `FamccO4F64` (the controller, its tag and headroom).
+ */
+#define FAMCC_O4_F64_WORDS 184
+
+/**
+ * 64-bit words of `FamccO5F32` (the controller, its tag and headroom).
+ */
+#define FAMCC_O5_F32_WORDS 120
+
+/**
+ * 64-bit words of `FamccO5F64` (the controller, its tag and headroom).
+ */
+#define FAMCC_O5_F64_WORDS 224
+
+/**
+ * 64-bit words of `FamccO6F32` (the controller, its tag and headroom).
+ */
+#define FAMCC_O6_F32_WORDS 136
+
+/**
+ * 64-bit words of `FamccO6F64` (the controller, its tag and headroom).
+ */
+#define FAMCC_O6_F64_WORDS 256
+
+/**
  * The largest system order this ABI supports (arrays below are sized by it).
  */
-#define FAMCC_MAX_ORDER 3
+#define FAMCC_MAX_ORDER 6
 
 /**
  * The largest number of manifold stages (`order - 1`).
  */
-#define FAMCC_MAX_STAGES 2
+#define FAMCC_MAX_STAGES (FAMCC_MAX_ORDER - 1)
 
 /**
  * The largest number of findings `*_lint` writes (one per kind of risk).
  */
 #define FAMCC_MAX_FINDINGS 5
-
-/**
- * 64-bit words of storage per controller type: the controller and a tag
- * word (x86_64: 42, 80, 54, 103 words in use), plus ~25 % headroom so that
- * famcc-core can grow without an ABI change. Checked at compile time on
- * every target.
- */
-#define FAMCC_O2_F32_WORDS 56
-
-/**
- * See `FAMCC_O2_F32_WORDS`.
- */
-#define FAMCC_O2_F64_WORDS 104
-
-/**
- * See `FAMCC_O2_F32_WORDS`.
- */
-#define FAMCC_O3_F32_WORDS 72
-
-/**
- * See `FAMCC_O2_F32_WORDS`.
- */
-#define FAMCC_O3_F64_WORDS 128
 
 /**
  * Constraint kinds (`FamccConstraint.kind`).
@@ -967,11 +1004,11 @@ typedef struct FamccConfig_f64 {
 typedef struct FamccConfig_f64 FamccConfigF64;
 
 /**
- * Storage for an order-2 `float` controller (opaque; 8-byte aligned).
+ * Storage for an order-1 `float` controller (opaque; 8-byte aligned).
  */
-typedef struct FamccO2F32 {
-  uint64_t _opaque[FAMCC_O2_F32_WORDS];
-} FamccO2F32;
+typedef struct FamccO1F32 {
+  uint64_t _opaque[FAMCC_O1_F32_WORDS];
+} FamccO1F32;
 
 /**
  * Why a configuration was rejected (NUL-terminated, truncated if needed).
@@ -1094,11 +1131,32 @@ typedef struct FamccDiagnostics_f32 {
 typedef struct FamccDiagnostics_f32 FamccDiagnosticsF32;
 
 /**
- * Storage for an order-2 `double` controller (opaque; 8-byte aligned).
+ * One legal but risky choice of a configuration (famcc-core's
+ * `Config::lint`): the parameter and the whole finding in words, naming the
+ * rule, the configuration's number and a suggested value (NUL-terminated,
+ * truncated if needed).
  */
-typedef struct FamccO2F64 {
-  uint64_t _opaque[FAMCC_O2_F64_WORDS];
-} FamccO2F64;
+typedef struct FamccFinding {
+  /**
+   * Zero-based stage for per-stage parameters, -1 otherwise.
+   */
+  int32_t stage;
+  /**
+   * The parameter to change (`dt`, `rho_e`, `k`, `estimate_limits`, ...).
+   */
+  char parameter[32];
+  /**
+   * The finding: the risk, the rule, the number and the suggestion.
+   */
+  char message[480];
+} FamccFinding;
+
+/**
+ * Storage for an order-1 `double` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO1F64 {
+  uint64_t _opaque[FAMCC_O1_F64_WORDS];
+} FamccO1F64;
 
 /**
  * What the last step did (mirrors `famcc_core::Diagnostics`; arrays hold
@@ -1203,6 +1261,20 @@ typedef struct FamccDiagnostics_f64 {
 typedef struct FamccDiagnostics_f64 FamccDiagnosticsF64;
 
 /**
+ * Storage for an order-2 `float` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO2F32 {
+  uint64_t _opaque[FAMCC_O2_F32_WORDS];
+} FamccO2F32;
+
+/**
+ * Storage for an order-2 `double` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO2F64 {
+  uint64_t _opaque[FAMCC_O2_F64_WORDS];
+} FamccO2F64;
+
+/**
  * Storage for an order-3 `float` controller (opaque; 8-byte aligned).
  */
 typedef struct FamccO3F32 {
@@ -1217,25 +1289,46 @@ typedef struct FamccO3F64 {
 } FamccO3F64;
 
 /**
- * One legal but risky choice of a configuration (famcc-core's
- * `Config::lint`): the parameter and the whole finding in words, naming the
- * rule, the configuration's number and a suggested value (NUL-terminated,
- * truncated if needed).
+ * Storage for an order-4 `float` controller (opaque; 8-byte aligned).
  */
-typedef struct FamccFinding {
-  /**
-   * Zero-based stage for per-stage parameters, -1 otherwise.
-   */
-  int32_t stage;
-  /**
-   * The parameter to change (`dt`, `rho_e`, `k`, `estimate_limits`, ...).
-   */
-  char parameter[32];
-  /**
-   * The finding: the risk, the rule, the number and the suggestion.
-   */
-  char message[480];
-} FamccFinding;
+typedef struct FamccO4F32 {
+  uint64_t _opaque[FAMCC_O4_F32_WORDS];
+} FamccO4F32;
+
+/**
+ * Storage for an order-4 `double` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO4F64 {
+  uint64_t _opaque[FAMCC_O4_F64_WORDS];
+} FamccO4F64;
+
+/**
+ * Storage for an order-5 `float` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO5F32 {
+  uint64_t _opaque[FAMCC_O5_F32_WORDS];
+} FamccO5F32;
+
+/**
+ * Storage for an order-5 `double` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO5F64 {
+  uint64_t _opaque[FAMCC_O5_F64_WORDS];
+} FamccO5F64;
+
+/**
+ * Storage for an order-6 `float` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO6F32 {
+  uint64_t _opaque[FAMCC_O6_F32_WORDS];
+} FamccO6F32;
+
+/**
+ * Storage for an order-6 `double` controller (opaque; 8-byte aligned).
+ */
+typedef struct FamccO6F64 {
+  uint64_t _opaque[FAMCC_O6_F64_WORDS];
+} FamccO6F64;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1262,6 +1355,140 @@ FamccStatus famcc_config_f32_defaults(FamccConfigF32 *cfg);
 FamccStatus famcc_config_f64_defaults(FamccConfigF64 *cfg);
 
 /**
+ * `sizeof(FamccO1F32)`.
+ */
+size_t famcc_o1_f32_size(void);
+
+/**
+ * `_Alignof(FamccO1F32)`.
+ */
+size_t famcc_o1_f32_align(void);
+
+/**
+ * Validates `config` (order 1, `float`: no stages: a first-order manifold) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o1_f32_init(struct FamccO1F32 *storage,
+                              const FamccConfigF32 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o1_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o1_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o1_f32_align()`; nothing is written then.
+ */
+FamccStatus famcc_o1_f32_init_sized(struct FamccO1F32 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF32 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o1_f32_step(struct FamccO1F32 *c, float e, float *v);
+
+/**
+ * `famcc_o1_f32_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o1_f32_step_applied(struct FamccO1F32 *c, float e, float applied, float *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o1_f32_reset(struct FamccO1F32 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o1_f32_diagnostics(const struct FamccO1F32 *c, FamccDiagnosticsF32 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o1_f32_lint(const struct FamccO1F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `sizeof(FamccO1F64)`.
+ */
+size_t famcc_o1_f64_size(void);
+
+/**
+ * `_Alignof(FamccO1F64)`.
+ */
+size_t famcc_o1_f64_align(void);
+
+/**
+ * Validates `config` (order 1, `double`: no stages: a first-order manifold) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o1_f64_init(struct FamccO1F64 *storage,
+                              const FamccConfigF64 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o1_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o1_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o1_f64_align()`; nothing is written then.
+ */
+FamccStatus famcc_o1_f64_init_sized(struct FamccO1F64 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o1_f64_step(struct FamccO1F64 *c, double e, double *v);
+
+/**
+ * `famcc_o1_f64_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o1_f64_step_applied(struct FamccO1F64 *c, double e, double applied, double *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o1_f64_reset(struct FamccO1F64 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o1_f64_diagnostics(const struct FamccO1F64 *c, FamccDiagnosticsF64 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o1_f64_lint(const struct FamccO1F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
  * `sizeof(FamccO2F32)`.
  */
 size_t famcc_o2_f32_size(void);
@@ -1272,7 +1499,7 @@ size_t famcc_o2_f32_size(void);
 size_t famcc_o2_f32_align(void);
 
 /**
- * Validates `config` (order 2: `stages[0]` used) and writes a controller
+ * Validates `config` (order 2, `float`: `stages[0]` used) and writes a controller
  * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
  * `error` (may be NULL) and `storage` is left uninitialised.
  */
@@ -1281,10 +1508,10 @@ FamccStatus famcc_o2_f32_init(struct FamccO2F32 *storage,
                               struct FamccError *error);
 
 /**
- * `famcc_o2_f32_init` for storage given as a buffer of `storage_size`
- * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
- * smaller than `famcc_o2_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
- * not aligned to `famcc_o2_f32_align()`; nothing is written then.
+ * `famcc_o2_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o2_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o2_f32_align()`; nothing is written then.
  */
 FamccStatus famcc_o2_f32_init_sized(struct FamccO2F32 *storage,
                                     size_t storage_size,
@@ -1300,8 +1527,8 @@ FamccStatus famcc_o2_f32_init_sized(struct FamccO2F32 *storage,
 FamccStatus famcc_o2_f32_step(struct FamccO2F32 *c, float e, float *v);
 
 /**
- * `famcc_o2_f32_step`, telling the controller the input the actuator really
- * applied at the previous sample (diagnostics report the saturation gap).
+ * `famcc_o2_f32_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
  */
 FamccStatus famcc_o2_f32_step_applied(struct FamccO2F32 *c, float e, float applied, float *v);
 
@@ -1316,6 +1543,19 @@ FamccStatus famcc_o2_f32_reset(struct FamccO2F32 *c);
 FamccStatus famcc_o2_f32_diagnostics(const struct FamccO2F32 *c, FamccDiagnosticsF32 *out);
 
 /**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o2_f32_lint(const struct FamccO2F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
  * `sizeof(FamccO2F64)`.
  */
 size_t famcc_o2_f64_size(void);
@@ -1326,17 +1566,19 @@ size_t famcc_o2_f64_size(void);
 size_t famcc_o2_f64_align(void);
 
 /**
- * See `famcc_o2_f32_init`.
+ * Validates `config` (order 2, `double`: `stages[0]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
  */
 FamccStatus famcc_o2_f64_init(struct FamccO2F64 *storage,
                               const FamccConfigF64 *config,
                               struct FamccError *error);
 
 /**
- * `famcc_o2_f64_init` for storage given as a buffer of `storage_size`
- * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
- * smaller than `famcc_o2_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
- * not aligned to `famcc_o2_f64_align()`; nothing is written then.
+ * `famcc_o2_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o2_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o2_f64_align()`; nothing is written then.
  */
 FamccStatus famcc_o2_f64_init_sized(struct FamccO2F64 *storage,
                                     size_t storage_size,
@@ -1344,24 +1586,41 @@ FamccStatus famcc_o2_f64_init_sized(struct FamccO2F64 *storage,
                                     struct FamccError *error);
 
 /**
- * See `famcc_o2_f32_step`.
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
  */
 FamccStatus famcc_o2_f64_step(struct FamccO2F64 *c, double e, double *v);
 
 /**
- * See `famcc_o2_f32_step_applied`.
+ * `famcc_o2_f64_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
  */
 FamccStatus famcc_o2_f64_step_applied(struct FamccO2F64 *c, double e, double applied, double *v);
 
 /**
- * See `famcc_o2_f32_reset`.
+ * Back to the state before the first step (configuration kept).
  */
 FamccStatus famcc_o2_f64_reset(struct FamccO2F64 *c);
 
 /**
- * See `famcc_o2_f32_diagnostics`.
+ * What the last step did.
  */
 FamccStatus famcc_o2_f64_diagnostics(const struct FamccO2F64 *c, FamccDiagnosticsF64 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o2_f64_lint(const struct FamccO2F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
 
 /**
  * `sizeof(FamccO3F32)`.
@@ -1374,17 +1633,19 @@ size_t famcc_o3_f32_size(void);
 size_t famcc_o3_f32_align(void);
 
 /**
- * See `famcc_o2_f32_init` (order 3: `stages[0..2]` used).
+ * Validates `config` (order 3, `float`: `stages[0..2]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
  */
 FamccStatus famcc_o3_f32_init(struct FamccO3F32 *storage,
                               const FamccConfigF32 *config,
                               struct FamccError *error);
 
 /**
- * `famcc_o3_f32_init` for storage given as a buffer of `storage_size`
- * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
- * smaller than `famcc_o3_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
- * not aligned to `famcc_o3_f32_align()`; nothing is written then.
+ * `famcc_o3_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o3_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o3_f32_align()`; nothing is written then.
  */
 FamccStatus famcc_o3_f32_init_sized(struct FamccO3F32 *storage,
                                     size_t storage_size,
@@ -1392,24 +1653,41 @@ FamccStatus famcc_o3_f32_init_sized(struct FamccO3F32 *storage,
                                     struct FamccError *error);
 
 /**
- * See `famcc_o2_f32_step`.
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
  */
 FamccStatus famcc_o3_f32_step(struct FamccO3F32 *c, float e, float *v);
 
 /**
- * See `famcc_o2_f32_step_applied`.
+ * `famcc_o3_f32_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
  */
 FamccStatus famcc_o3_f32_step_applied(struct FamccO3F32 *c, float e, float applied, float *v);
 
 /**
- * See `famcc_o2_f32_reset`.
+ * Back to the state before the first step (configuration kept).
  */
 FamccStatus famcc_o3_f32_reset(struct FamccO3F32 *c);
 
 /**
- * See `famcc_o2_f32_diagnostics`.
+ * What the last step did.
  */
 FamccStatus famcc_o3_f32_diagnostics(const struct FamccO3F32 *c, FamccDiagnosticsF32 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o3_f32_lint(const struct FamccO3F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
 
 /**
  * `sizeof(FamccO3F64)`.
@@ -1422,17 +1700,19 @@ size_t famcc_o3_f64_size(void);
 size_t famcc_o3_f64_align(void);
 
 /**
- * See `famcc_o3_f32_init`.
+ * Validates `config` (order 3, `double`: `stages[0..2]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
  */
 FamccStatus famcc_o3_f64_init(struct FamccO3F64 *storage,
                               const FamccConfigF64 *config,
                               struct FamccError *error);
 
 /**
- * `famcc_o3_f64_init` for storage given as a buffer of `storage_size`
- * bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
- * smaller than `famcc_o3_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
- * not aligned to `famcc_o3_f64_align()`; nothing is written then.
+ * `famcc_o3_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o3_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o3_f64_align()`; nothing is written then.
  */
 FamccStatus famcc_o3_f64_init_sized(struct FamccO3F64 *storage,
                                     size_t storage_size,
@@ -1440,58 +1720,440 @@ FamccStatus famcc_o3_f64_init_sized(struct FamccO3F64 *storage,
                                     struct FamccError *error);
 
 /**
- * See `famcc_o2_f32_step`.
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
  */
 FamccStatus famcc_o3_f64_step(struct FamccO3F64 *c, double e, double *v);
 
 /**
- * See `famcc_o2_f32_step_applied`.
+ * `famcc_o3_f64_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
  */
 FamccStatus famcc_o3_f64_step_applied(struct FamccO3F64 *c, double e, double applied, double *v);
 
 /**
- * See `famcc_o2_f32_reset`.
+ * Back to the state before the first step (configuration kept).
  */
 FamccStatus famcc_o3_f64_reset(struct FamccO3F64 *c);
 
 /**
- * See `famcc_o2_f32_diagnostics`.
+ * What the last step did.
  */
 FamccStatus famcc_o3_f64_diagnostics(const struct FamccO3F64 *c, FamccDiagnosticsF64 *out);
 
 /**
  * The legal but risky choices of the controller's configuration
  * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
- * chatters, rho_e too large for eps, no estimate limits or the exact ZOH
- * at order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
  * when `capacity` is 0) and their number to `*count`; at most
  * `FAMCC_MAX_FINDINGS`.
  */
-FamccStatus famcc_o2_f32_lint(const struct FamccO2F32 *c,
-                              struct FamccFinding *out,
-                              size_t capacity,
-                              size_t *count);
-
-/**
- * `famcc_o2_f32_lint` for `FamccO2F64`.
- */
-FamccStatus famcc_o2_f64_lint(const struct FamccO2F64 *c,
-                              struct FamccFinding *out,
-                              size_t capacity,
-                              size_t *count);
-
-/**
- * `famcc_o2_f32_lint` for `FamccO3F32`.
- */
-FamccStatus famcc_o3_f32_lint(const struct FamccO3F32 *c,
-                              struct FamccFinding *out,
-                              size_t capacity,
-                              size_t *count);
-
-/**
- * `famcc_o2_f32_lint` for `FamccO3F64`.
- */
 FamccStatus famcc_o3_f64_lint(const struct FamccO3F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `sizeof(FamccO4F32)`.
+ */
+size_t famcc_o4_f32_size(void);
+
+/**
+ * `_Alignof(FamccO4F32)`.
+ */
+size_t famcc_o4_f32_align(void);
+
+/**
+ * Validates `config` (order 4, `float`: `stages[0..3]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o4_f32_init(struct FamccO4F32 *storage,
+                              const FamccConfigF32 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o4_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o4_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o4_f32_align()`; nothing is written then.
+ */
+FamccStatus famcc_o4_f32_init_sized(struct FamccO4F32 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF32 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o4_f32_step(struct FamccO4F32 *c, float e, float *v);
+
+/**
+ * `famcc_o4_f32_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o4_f32_step_applied(struct FamccO4F32 *c, float e, float applied, float *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o4_f32_reset(struct FamccO4F32 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o4_f32_diagnostics(const struct FamccO4F32 *c, FamccDiagnosticsF32 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o4_f32_lint(const struct FamccO4F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `sizeof(FamccO4F64)`.
+ */
+size_t famcc_o4_f64_size(void);
+
+/**
+ * `_Alignof(FamccO4F64)`.
+ */
+size_t famcc_o4_f64_align(void);
+
+/**
+ * Validates `config` (order 4, `double`: `stages[0..3]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o4_f64_init(struct FamccO4F64 *storage,
+                              const FamccConfigF64 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o4_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o4_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o4_f64_align()`; nothing is written then.
+ */
+FamccStatus famcc_o4_f64_init_sized(struct FamccO4F64 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o4_f64_step(struct FamccO4F64 *c, double e, double *v);
+
+/**
+ * `famcc_o4_f64_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o4_f64_step_applied(struct FamccO4F64 *c, double e, double applied, double *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o4_f64_reset(struct FamccO4F64 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o4_f64_diagnostics(const struct FamccO4F64 *c, FamccDiagnosticsF64 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o4_f64_lint(const struct FamccO4F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `sizeof(FamccO5F32)`.
+ */
+size_t famcc_o5_f32_size(void);
+
+/**
+ * `_Alignof(FamccO5F32)`.
+ */
+size_t famcc_o5_f32_align(void);
+
+/**
+ * Validates `config` (order 5, `float`: `stages[0..4]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o5_f32_init(struct FamccO5F32 *storage,
+                              const FamccConfigF32 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o5_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o5_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o5_f32_align()`; nothing is written then.
+ */
+FamccStatus famcc_o5_f32_init_sized(struct FamccO5F32 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF32 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o5_f32_step(struct FamccO5F32 *c, float e, float *v);
+
+/**
+ * `famcc_o5_f32_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o5_f32_step_applied(struct FamccO5F32 *c, float e, float applied, float *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o5_f32_reset(struct FamccO5F32 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o5_f32_diagnostics(const struct FamccO5F32 *c, FamccDiagnosticsF32 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o5_f32_lint(const struct FamccO5F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `sizeof(FamccO5F64)`.
+ */
+size_t famcc_o5_f64_size(void);
+
+/**
+ * `_Alignof(FamccO5F64)`.
+ */
+size_t famcc_o5_f64_align(void);
+
+/**
+ * Validates `config` (order 5, `double`: `stages[0..4]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o5_f64_init(struct FamccO5F64 *storage,
+                              const FamccConfigF64 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o5_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o5_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o5_f64_align()`; nothing is written then.
+ */
+FamccStatus famcc_o5_f64_init_sized(struct FamccO5F64 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o5_f64_step(struct FamccO5F64 *c, double e, double *v);
+
+/**
+ * `famcc_o5_f64_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o5_f64_step_applied(struct FamccO5F64 *c, double e, double applied, double *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o5_f64_reset(struct FamccO5F64 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o5_f64_diagnostics(const struct FamccO5F64 *c, FamccDiagnosticsF64 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o5_f64_lint(const struct FamccO5F64 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `sizeof(FamccO6F32)`.
+ */
+size_t famcc_o6_f32_size(void);
+
+/**
+ * `_Alignof(FamccO6F32)`.
+ */
+size_t famcc_o6_f32_align(void);
+
+/**
+ * Validates `config` (order 6, `float`: `stages[0..5]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o6_f32_init(struct FamccO6F32 *storage,
+                              const FamccConfigF32 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o6_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o6_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o6_f32_align()`; nothing is written then.
+ */
+FamccStatus famcc_o6_f32_init_sized(struct FamccO6F32 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF32 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o6_f32_step(struct FamccO6F32 *c, float e, float *v);
+
+/**
+ * `famcc_o6_f32_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o6_f32_step_applied(struct FamccO6F32 *c, float e, float applied, float *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o6_f32_reset(struct FamccO6F32 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o6_f32_diagnostics(const struct FamccO6F32 *c, FamccDiagnosticsF32 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o6_f32_lint(const struct FamccO6F32 *c,
+                              struct FamccFinding *out,
+                              size_t capacity,
+                              size_t *count);
+
+/**
+ * `sizeof(FamccO6F64)`.
+ */
+size_t famcc_o6_f64_size(void);
+
+/**
+ * `_Alignof(FamccO6F64)`.
+ */
+size_t famcc_o6_f64_align(void);
+
+/**
+ * Validates `config` (order 6, `double`: `stages[0..5]` used) and writes a controller
+ * into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
+ * `error` (may be NULL) and `storage` is left uninitialised.
+ */
+FamccStatus famcc_o6_f64_init(struct FamccO6F64 *storage,
+                              const FamccConfigF64 *config,
+                              struct FamccError *error);
+
+/**
+ * `famcc_o6_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
+ * pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is smaller than
+ * `famcc_o6_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is not aligned to
+ * `famcc_o6_f64_align()`; nothing is written then.
+ */
+FamccStatus famcc_o6_f64_init_sized(struct FamccO6F64 *storage,
+                                    size_t storage_size,
+                                    const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * One output-feedback step: consumes the error sample `e = y - y_d`, writes
+ * the control `v` to hold until the next sample. On error `*v` is not
+ * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
+ * the first step (the sample is consumed; see that status).
+ */
+FamccStatus famcc_o6_f64_step(struct FamccO6F64 *c, double e, double *v);
+
+/**
+ * `famcc_o6_f64_step`, telling the controller the input the actuator really applied
+ * at the previous sample (diagnostics report the saturation gap).
+ */
+FamccStatus famcc_o6_f64_step_applied(struct FamccO6F64 *c, double e, double applied, double *v);
+
+/**
+ * Back to the state before the first step (configuration kept).
+ */
+FamccStatus famcc_o6_f64_reset(struct FamccO6F64 *c);
+
+/**
+ * What the last step did.
+ */
+FamccStatus famcc_o6_f64_diagnostics(const struct FamccO6F64 *c, FamccDiagnosticsF64 *out);
+
+/**
+ * The legal but risky choices of the controller's configuration
+ * (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
+ * chatters, rho_e too large for eps, no estimate limits or the exact ZOH at
+ * order >= 4). Writes at most `capacity` findings to `out` (may be NULL
+ * when `capacity` is 0) and their number to `*count`; at most
+ * `FAMCC_MAX_FINDINGS`.
+ */
+FamccStatus famcc_o6_f64_lint(const struct FamccO6F64 *c,
                               struct FamccFinding *out,
                               size_t capacity,
                               size_t *count);

@@ -1,12 +1,12 @@
-//! C ABI for famcc-core: the FAMCC controller of orders 2 and 3 in `float`
+//! C ABI for famcc-core: the FAMCC controller of orders 1 to 6 in `float`
 //! (f32) and `double` (f64), for C firmware and other languages.
 //!
 //! Design:
-//! - **No allocation.** The caller provides the storage: `FamccO2F32`,
-//!   `FamccO2F64`, `FamccO3F32`, `FamccO3F64` are opaque structs of fixed size
-//!   and 8-byte alignment declared in the header (static, stack or pool
-//!   objects); `famcc_o2_f32_size()`/`_align()` report the same numbers at run
-//!   time. `*_init` writes a controller into the storage; every other call
+//! - **No allocation.** The caller provides the storage: `FamccO1F32` to
+//!   `FamccO6F64` (order 1 to 6, `float` or `double`) are opaque structs of
+//!   fixed size and 8-byte alignment declared in the header (static, stack or
+//!   pool objects); `famcc_o2_f32_size()`/`_align()` report the same numbers
+//!   at run time. `*_init` writes a controller into the storage; every other call
 //!   checks that it was initialised (`FAMCC_STATUS_NOT_INITIALIZED`).
 //! - **Plain C configuration.** `FamccConfig` mirrors `famcc_core::Config`;
 //!   feedback laws are tagged structs ([`FamccFeedback`]: a kind and a union
@@ -21,24 +21,30 @@
 //! The crate is split by concern: [`types`] (the C-facing types, which
 //! cbindgen writes to `include/famcc.h`; see `cbindgen.toml`), `convert`
 //! (C configuration and diagnostics to and from famcc-core's, with its
-//! defaults), `storage` (the tagged slots and checked access), and here the
-//! C functions themselves.
+//! defaults), `storage` (the tagged slots and checked access), `api` (the
+//! storage types and C functions of every order and float type, generated
+//! from one template by `src/api_gen.rs`: cbindgen does not expand macros),
+//! and here the functions common to all.
 #![no_std]
 #![allow(clippy::missing_safety_doc)]
 
+#[rustfmt::skip]
+mod api;
+#[cfg(test)]
+mod api_gen;
 mod convert;
 mod lint;
 mod storage;
 pub mod types;
 
 use core::ffi::c_char;
-use core::mem::{align_of, size_of};
 use core::ptr;
 
-use storage::{diagnostics, init, reset, step, MAGIC_O2_F32, MAGIC_O2_F64, MAGIC_O3_F32, MAGIC_O3_F64};
+pub use api::*;
 pub use types::*;
 // ---------------------------------------------------------------------------
-// The C functions (written out: cbindgen does not expand macros)
+// The C functions of every controller type are generated in `api.rs`
+// (src/api_gen.rs: cbindgen does not expand macros); here the common ones
 // ---------------------------------------------------------------------------
 
 /// A static NUL-terminated description of a status code.
@@ -86,284 +92,6 @@ unsafe fn write_defaults<T: famcc_core::Real>(cfg: *mut FamccConfig<T>) -> Famcc
     FamccStatus::Ok
 }
 
-/// `sizeof(FamccO2F32)`.
-#[no_mangle]
-pub extern "C" fn famcc_o2_f32_size() -> usize {
-    size_of::<FamccO2F32>()
-}
-
-/// `_Alignof(FamccO2F32)`.
-#[no_mangle]
-pub extern "C" fn famcc_o2_f32_align() -> usize {
-    align_of::<FamccO2F32>()
-}
-
-/// Validates `config` (order 2: `stages[0]` used) and writes a controller
-/// into `storage`. On `FAMCC_STATUS_INVALID_CONFIG` the reason is written to
-/// `error` (may be NULL) and `storage` is left uninitialised.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f32_init(
-    storage: *mut FamccO2F32,
-    config: *const FamccConfigF32,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f32, 2>(storage, None, config, error, MAGIC_O2_F32)
-}
-
-/// `famcc_o2_f32_init` for storage given as a buffer of `storage_size`
-/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
-/// smaller than `famcc_o2_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
-/// not aligned to `famcc_o2_f32_align()`; nothing is written then.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f32_init_sized(
-    storage: *mut FamccO2F32,
-    storage_size: usize,
-    config: *const FamccConfigF32,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f32, 2>(storage, Some(storage_size), config, error, MAGIC_O2_F32)
-}
-
-/// One output-feedback step: consumes the error sample `e = y - y_d`, writes
-/// the control `v` to hold until the next sample. On error `*v` is not
-/// written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
-/// the first step (the sample is consumed; see that status).
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f32_step(c: *mut FamccO2F32, e: f32, v: *mut f32) -> FamccStatus {
-    step::<_, f32, 2>(c, MAGIC_O2_F32, e, None, v)
-}
-
-/// `famcc_o2_f32_step`, telling the controller the input the actuator really
-/// applied at the previous sample (diagnostics report the saturation gap).
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f32_step_applied(
-    c: *mut FamccO2F32,
-    e: f32,
-    applied: f32,
-    v: *mut f32,
-) -> FamccStatus {
-    step::<_, f32, 2>(c, MAGIC_O2_F32, e, Some(applied), v)
-}
-
-/// Back to the state before the first step (configuration kept).
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f32_reset(c: *mut FamccO2F32) -> FamccStatus {
-    reset::<_, f32, 2>(c, MAGIC_O2_F32)
-}
-
-/// What the last step did.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f32_diagnostics(
-    c: *const FamccO2F32,
-    out: *mut FamccDiagnosticsF32,
-) -> FamccStatus {
-    diagnostics::<_, f32, 2>(c, MAGIC_O2_F32, out)
-}
-
-/// `sizeof(FamccO2F64)`.
-#[no_mangle]
-pub extern "C" fn famcc_o2_f64_size() -> usize {
-    size_of::<FamccO2F64>()
-}
-
-/// `_Alignof(FamccO2F64)`.
-#[no_mangle]
-pub extern "C" fn famcc_o2_f64_align() -> usize {
-    align_of::<FamccO2F64>()
-}
-
-/// See `famcc_o2_f32_init`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f64_init(
-    storage: *mut FamccO2F64,
-    config: *const FamccConfigF64,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f64, 2>(storage, None, config, error, MAGIC_O2_F64)
-}
-
-/// `famcc_o2_f64_init` for storage given as a buffer of `storage_size`
-/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
-/// smaller than `famcc_o2_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
-/// not aligned to `famcc_o2_f64_align()`; nothing is written then.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f64_init_sized(
-    storage: *mut FamccO2F64,
-    storage_size: usize,
-    config: *const FamccConfigF64,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f64, 2>(storage, Some(storage_size), config, error, MAGIC_O2_F64)
-}
-
-/// See `famcc_o2_f32_step`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f64_step(c: *mut FamccO2F64, e: f64, v: *mut f64) -> FamccStatus {
-    step::<_, f64, 2>(c, MAGIC_O2_F64, e, None, v)
-}
-
-/// See `famcc_o2_f32_step_applied`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f64_step_applied(
-    c: *mut FamccO2F64,
-    e: f64,
-    applied: f64,
-    v: *mut f64,
-) -> FamccStatus {
-    step::<_, f64, 2>(c, MAGIC_O2_F64, e, Some(applied), v)
-}
-
-/// See `famcc_o2_f32_reset`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f64_reset(c: *mut FamccO2F64) -> FamccStatus {
-    reset::<_, f64, 2>(c, MAGIC_O2_F64)
-}
-
-/// See `famcc_o2_f32_diagnostics`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f64_diagnostics(
-    c: *const FamccO2F64,
-    out: *mut FamccDiagnosticsF64,
-) -> FamccStatus {
-    diagnostics::<_, f64, 2>(c, MAGIC_O2_F64, out)
-}
-
-/// `sizeof(FamccO3F32)`.
-#[no_mangle]
-pub extern "C" fn famcc_o3_f32_size() -> usize {
-    size_of::<FamccO3F32>()
-}
-
-/// `_Alignof(FamccO3F32)`.
-#[no_mangle]
-pub extern "C" fn famcc_o3_f32_align() -> usize {
-    align_of::<FamccO3F32>()
-}
-
-/// See `famcc_o2_f32_init` (order 3: `stages[0..2]` used).
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f32_init(
-    storage: *mut FamccO3F32,
-    config: *const FamccConfigF32,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f32, 3>(storage, None, config, error, MAGIC_O3_F32)
-}
-
-/// `famcc_o3_f32_init` for storage given as a buffer of `storage_size`
-/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
-/// smaller than `famcc_o3_f32_size()`, `FAMCC_STATUS_MISALIGNED` when it is
-/// not aligned to `famcc_o3_f32_align()`; nothing is written then.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f32_init_sized(
-    storage: *mut FamccO3F32,
-    storage_size: usize,
-    config: *const FamccConfigF32,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f32, 3>(storage, Some(storage_size), config, error, MAGIC_O3_F32)
-}
-
-/// See `famcc_o2_f32_step`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f32_step(c: *mut FamccO3F32, e: f32, v: *mut f32) -> FamccStatus {
-    step::<_, f32, 3>(c, MAGIC_O3_F32, e, None, v)
-}
-
-/// See `famcc_o2_f32_step_applied`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f32_step_applied(
-    c: *mut FamccO3F32,
-    e: f32,
-    applied: f32,
-    v: *mut f32,
-) -> FamccStatus {
-    step::<_, f32, 3>(c, MAGIC_O3_F32, e, Some(applied), v)
-}
-
-/// See `famcc_o2_f32_reset`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f32_reset(c: *mut FamccO3F32) -> FamccStatus {
-    reset::<_, f32, 3>(c, MAGIC_O3_F32)
-}
-
-/// See `famcc_o2_f32_diagnostics`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f32_diagnostics(
-    c: *const FamccO3F32,
-    out: *mut FamccDiagnosticsF32,
-) -> FamccStatus {
-    diagnostics::<_, f32, 3>(c, MAGIC_O3_F32, out)
-}
-
-/// `sizeof(FamccO3F64)`.
-#[no_mangle]
-pub extern "C" fn famcc_o3_f64_size() -> usize {
-    size_of::<FamccO3F64>()
-}
-
-/// `_Alignof(FamccO3F64)`.
-#[no_mangle]
-pub extern "C" fn famcc_o3_f64_align() -> usize {
-    align_of::<FamccO3F64>()
-}
-
-/// See `famcc_o3_f32_init`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f64_init(
-    storage: *mut FamccO3F64,
-    config: *const FamccConfigF64,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f64, 3>(storage, None, config, error, MAGIC_O3_F64)
-}
-
-/// `famcc_o3_f64_init` for storage given as a buffer of `storage_size`
-/// bytes (e.g. a pool block): `FAMCC_STATUS_STORAGE_TOO_SMALL` when it is
-/// smaller than `famcc_o3_f64_size()`, `FAMCC_STATUS_MISALIGNED` when it is
-/// not aligned to `famcc_o3_f64_align()`; nothing is written then.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f64_init_sized(
-    storage: *mut FamccO3F64,
-    storage_size: usize,
-    config: *const FamccConfigF64,
-    error: *mut FamccError,
-) -> FamccStatus {
-    init::<_, f64, 3>(storage, Some(storage_size), config, error, MAGIC_O3_F64)
-}
-
-/// See `famcc_o2_f32_step`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f64_step(c: *mut FamccO3F64, e: f64, v: *mut f64) -> FamccStatus {
-    step::<_, f64, 3>(c, MAGIC_O3_F64, e, None, v)
-}
-
-/// See `famcc_o2_f32_step_applied`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f64_step_applied(
-    c: *mut FamccO3F64,
-    e: f64,
-    applied: f64,
-    v: *mut f64,
-) -> FamccStatus {
-    step::<_, f64, 3>(c, MAGIC_O3_F64, e, Some(applied), v)
-}
-
-/// See `famcc_o2_f32_reset`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f64_reset(c: *mut FamccO3F64) -> FamccStatus {
-    reset::<_, f64, 3>(c, MAGIC_O3_F64)
-}
-
-/// See `famcc_o2_f32_diagnostics`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f64_diagnostics(
-    c: *const FamccO3F64,
-    out: *mut FamccDiagnosticsF64,
-) -> FamccStatus {
-    diagnostics::<_, f64, 3>(c, MAGIC_O3_F64, out)
-}
-
 // ---------------------------------------------------------------------------
 // Panic handler (no_std builds; never reached: famcc-core does not panic)
 // ---------------------------------------------------------------------------
@@ -391,55 +119,6 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     unsafe { abort() }
 }
 
-/// The legal but risky choices of the controller's configuration
-/// (famcc-core's `Config::lint`: dt too coarse for mu, a last-stage law that
-/// chatters, rho_e too large for eps, no estimate limits or the exact ZOH
-/// at order >= 4). Writes at most `capacity` findings to `out` (may be NULL
-/// when `capacity` is 0) and their number to `*count`; at most
-/// `FAMCC_MAX_FINDINGS`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f32_lint(
-    c: *const FamccO2F32,
-    out: *mut FamccFinding,
-    capacity: usize,
-    count: *mut usize,
-) -> FamccStatus {
-    lint::lint::<_, f32, 2>(c, MAGIC_O2_F32, out, capacity, count)
-}
-
-/// `famcc_o2_f32_lint` for `FamccO2F64`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o2_f64_lint(
-    c: *const FamccO2F64,
-    out: *mut FamccFinding,
-    capacity: usize,
-    count: *mut usize,
-) -> FamccStatus {
-    lint::lint::<_, f64, 2>(c, MAGIC_O2_F64, out, capacity, count)
-}
-
-/// `famcc_o2_f32_lint` for `FamccO3F32`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f32_lint(
-    c: *const FamccO3F32,
-    out: *mut FamccFinding,
-    capacity: usize,
-    count: *mut usize,
-) -> FamccStatus {
-    lint::lint::<_, f32, 3>(c, MAGIC_O3_F32, out, capacity, count)
-}
-
-/// `famcc_o2_f32_lint` for `FamccO3F64`.
-#[no_mangle]
-pub unsafe extern "C" fn famcc_o3_f64_lint(
-    c: *const FamccO3F64,
-    out: *mut FamccFinding,
-    capacity: usize,
-    count: *mut usize,
-) -> FamccStatus {
-    lint::lint::<_, f64, 3>(c, MAGIC_O3_F64, out, capacity, count)
-}
-
 /// The prebuilt `core` of hosted targets is compiled with unwinding and
 /// references this personality routine; this crate is `panic = "abort"` and
 /// never unwinds, so it is never called (bare-metal builds rebuild `core`
@@ -453,3 +132,6 @@ mod tests;
 
 #[cfg(test)]
 mod tests_options;
+
+#[cfg(test)]
+mod tests_orders;

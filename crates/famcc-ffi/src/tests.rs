@@ -603,7 +603,13 @@ fn c_skew<T: Real>(s: SkewSpec) -> FamccSkew<T> {
 /// The C configuration of a variant, every field set explicitly.
 fn c_variant<T: Real>(v: &Case, order: usize) -> FamccConfig<T> {
     let f = T::from_f64;
-    let pad = |x: [f64; 3]| [f(x[0]), f(x[1]), f(x[2])];
+    let pad = |x: [f64; 3]| {
+        let mut a = [T::zero(); FAMCC_MAX_ORDER];
+        for (d, s) in a.iter_mut().zip(x) {
+            *d = f(s);
+        }
+        a
+    };
     let (kind, ex, ey) = v.constraint;
     let (flexible, rho_e) = match v.flex {
         Flex::Off => (FamccFlexible::Off, T::zero()),
@@ -629,7 +635,7 @@ fn c_variant<T: Real>(v: &Case, order: usize) -> FamccConfig<T> {
         rho_e,
         transition: v.transition as u32,
         latch: v.latch as u32,
-        stages: [stage(0), stage(1)],
+        stages: core::array::from_fn(|i| if i < 2 { stage(i) } else { stage(0) }),
         differentiator: FamccDifferentiator {
             enabled: 1,
             mu: f(0.01),

@@ -1,13 +1,13 @@
 //! The C-facing types: status codes, enumeration values, the configuration
-//! and diagnostics structs, and the opaque storage of each controller type.
-//! cbindgen writes `include/famcc.h` from them.
+//! and diagnostics structs (the opaque storage of each controller type is
+//! generated, in `api.rs`). cbindgen writes `include/famcc.h` from them.
 
 use core::ffi::c_char;
 
 /// The largest system order this ABI supports (arrays below are sized by it).
-pub const FAMCC_MAX_ORDER: usize = 3;
+pub const FAMCC_MAX_ORDER: usize = 6;
 /// The largest number of manifold stages (`order - 1`).
-pub const FAMCC_MAX_STAGES: usize = 2;
+pub const FAMCC_MAX_STAGES: usize = FAMCC_MAX_ORDER - 1;
 
 /// Result of every call. `FAMCC_STATUS_OK` is 0; errors are positive.
 #[repr(u32)]
@@ -431,39 +431,3 @@ pub type FamccConfigF64 = FamccConfig<f64>;
 pub type FamccDiagnosticsF32 = FamccDiagnostics<f32>;
 /// `double` diagnostics.
 pub type FamccDiagnosticsF64 = FamccDiagnostics<f64>;
-
-/// 64-bit words of storage per controller type: the controller and a tag
-/// word (x86_64: 42, 80, 54, 103 words in use), plus ~25 % headroom so that
-/// famcc-core can grow without an ABI change. Checked at compile time on
-/// every target.
-pub const FAMCC_O2_F32_WORDS: usize = 56;
-/// See `FAMCC_O2_F32_WORDS`.
-pub const FAMCC_O2_F64_WORDS: usize = 104;
-/// See `FAMCC_O2_F32_WORDS`.
-pub const FAMCC_O3_F32_WORDS: usize = 72;
-/// See `FAMCC_O2_F32_WORDS`.
-pub const FAMCC_O3_F64_WORDS: usize = 128;
-
-/// Storage for an order-2 `float` controller (opaque; 8-byte aligned).
-#[repr(C)]
-pub struct FamccO2F32 {
-    _opaque: [u64; FAMCC_O2_F32_WORDS],
-}
-
-/// Storage for an order-2 `double` controller (opaque; 8-byte aligned).
-#[repr(C)]
-pub struct FamccO2F64 {
-    _opaque: [u64; FAMCC_O2_F64_WORDS],
-}
-
-/// Storage for an order-3 `float` controller (opaque; 8-byte aligned).
-#[repr(C)]
-pub struct FamccO3F32 {
-    _opaque: [u64; FAMCC_O3_F32_WORDS],
-}
-
-/// Storage for an order-3 `double` controller (opaque; 8-byte aligned).
-#[repr(C)]
-pub struct FamccO3F64 {
-    _opaque: [u64; FAMCC_O3_F64_WORDS],
-}
