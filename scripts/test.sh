@@ -49,6 +49,9 @@ for manifest in Cargo.toml crates/famcc-ffi/Cargo.toml embedded/Cargo.toml; do
     RUSTDOCFLAGS="-D warnings" cargo doc --manifest-path "$manifest" --workspace --no-deps --quiet
 done
 cargo test -p famcc-core -p famcc-paper
+# Every benchmark workload builds its controller and steps once (criterion's
+# test mode): a design the validation rules reject fails here, not in a bench run.
+cargo test -q -p famcc-core --benches
 # no_std: both build without the standard library.
 cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
