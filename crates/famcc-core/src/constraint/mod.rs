@@ -303,3 +303,20 @@ fn clamp_below_one<T: Real>(xi: T) -> (T, bool) {
         (xi, false)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::clamp_below_one;
+
+    #[test]
+    fn the_largest_float_below_one_is_not_clamped() {
+        let limit = 1.0 - f64::EPSILON * 0.5;
+        assert_eq!(clamp_below_one(limit), (limit, false));
+        assert_eq!(clamp_below_one(-limit), (-limit, false));
+        assert_eq!(clamp_below_one(1.0), (limit, true));
+        assert_eq!(clamp_below_one(-3.0), (-limit, true));
+        let limit32 = 1.0 - f32::EPSILON * 0.5;
+        assert_eq!(clamp_below_one(limit32), (limit32, false));
+        assert_eq!(clamp_below_one(f32::INFINITY), (limit32, true));
+    }
+}

@@ -320,3 +320,27 @@ fn the_sampled_loop_radius_at_order_8_is_the_loops_growth_rate() {
         "finding {finding} measured {measured}"
     );
 }
+
+#[test]
+fn the_settle_time_rule_warns_down_to_half_the_rate_and_fails_below() {
+    // lambda against need = (ln 5 + 1.5 (n_law - 1)) / (T_required - T_s):
+    // a shortfall up to 2x (inclusive) warns, more fails.
+    let r = req(2);
+    let mut d = design(&r).unwrap();
+    let need = (5.0_f64.ln() + 1.5 * (d.law_order - 1) as f64) / (r.settle_time - d.settle_time);
+    for (lambda, level) in [
+        (need, Level::Ok),
+        (0.75 * need, Level::Warn),
+        (0.5 * need, Level::Warn),
+        (0.5 * need * (1.0 - 1e-12), Level::Fail),
+    ] {
+        d.lambda = lambda;
+        check(&mut d, &r).unwrap();
+        assert_eq!(
+            finding(d.checks(), Rule::SettleTime).level,
+            level,
+            "lambda / need = {}",
+            lambda / need
+        );
+    }
+}

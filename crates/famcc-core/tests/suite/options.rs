@@ -390,3 +390,40 @@ fn integral_and_limits_in_f32() {
     assert!(d.integral.is_some_and(f32::is_finite));
     assert!(x.abs() < 1e-2, "x = {x}");
 }
+
+#[test]
+fn the_chatter_lint_suggests_the_gain_at_its_rule() {
+    // The suggested k of the last stage puts the chatter amplitude at the
+    // rule's 1 % of the accuracy: just below it is quiet, just above warns,
+    // for the lateral (accuracy eps_x) and longitudinal (eps_y) constraints.
+    use famcc_core::config::Suggestion;
+    for constraint in [
+        Constraint::Lateral { eps: 0.01 },
+        Constraint::Longitudinal { eps: 0.01 },
+    ] {
+        let lint_at = |k: f64| {
+            let ft = [
+                (Feedback::Linear { k: 1.0 }, None),
+                (Feedback::FiniteTime { k, p: 0.5 }, None),
+            ];
+            Config::<f64, 3>::builder(1e-3, &ft, constraint, 5.0)
+                .differentiator(Some(HighGain::paper()))
+                .build()
+                .unwrap()
+                .lint()
+        };
+        let found = lint_at(20.0);
+        let Suggestion::Value(k) = found.get(Lint::Chatter).unwrap().suggestion else {
+            panic!("a number for k");
+        };
+        assert!(k > 0.0 && k < 20.0, "{constraint:?}: {k}");
+        assert!(
+            lint_at(0.98 * k).get(Lint::Chatter).is_none(),
+            "{constraint:?}: {k}"
+        );
+        assert!(
+            lint_at(1.02 * k).get(Lint::Chatter).is_some(),
+            "{constraint:?}: {k}"
+        );
+    }
+}

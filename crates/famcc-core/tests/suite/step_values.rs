@@ -942,3 +942,29 @@ fn jet_powf_rescales_an_underflowing_power_through_logs() {
     assert_eq!(y.value(), 0.0);
     assert_close(y.derivative(1), 2.5e-300, 1e-12, "d/dt");
 }
+
+#[test]
+fn jet_sqrt_derivatives_by_hand() {
+    use famcc_core::jet::Jet;
+    // y = sqrt(x(t)) with x = 4, x' = 1, x'' = 0.5, x''' = -0.2:
+    // y' = x' / (2 y), y'' = (x'' - 2 y'^2) / (2 y), y''' = (x''' - 6 y' y'') / (2 y).
+    let x = Jet::<f64, 4>::from_derivatives([4.0, 1.0, 0.5, -0.2]);
+    let y = x.powf(0.5);
+    let y0 = 2.0;
+    let y1 = 1.0 / (2.0 * y0);
+    let y2 = (0.5 - 2.0 * y1 * y1) / (2.0 * y0);
+    let y3 = (-0.2 - 6.0 * y1 * y2) / (2.0 * y0);
+    for (k, want) in [y0, y1, y2, y3].into_iter().enumerate() {
+        assert_close(y.derivative(k), want, 1e-14, &format!("d^{k}/dt^{k} sqrt"));
+    }
+    // The fast path agrees with exp(ln(x) / 2).
+    let slow = x.ln().scale(0.5).exp();
+    for k in 0..4 {
+        assert_close(
+            y.derivative(k),
+            slow.derivative(k),
+            1e-12,
+            "sqrt against exp(ln / 2)",
+        );
+    }
+}
