@@ -306,7 +306,17 @@ fn clamp_below_one<T: Real>(xi: T) -> (T, bool) {
 
 #[cfg(test)]
 mod tests {
-    use super::clamp_below_one;
+    use super::{clamp_below_one, half_width};
+
+    #[test]
+    fn the_half_width_is_the_hypotenuse_even_where_the_squares_overflow() {
+        assert_eq!(half_width(3.0_f64, 4.0), 5.0);
+        // 3e200 and 4e200: the squares overflow, the scaled form does not.
+        let d = half_width(3e200_f64, 4e200);
+        assert!((d / 5e200 - 1.0).abs() < 1e-15, "{d}");
+        let d32 = half_width(3e30_f32, 4e30);
+        assert!((d32 / 5e30 - 1.0).abs() < 1e-6, "{d32}");
+    }
 
     #[test]
     fn the_largest_float_below_one_is_not_clamped() {
