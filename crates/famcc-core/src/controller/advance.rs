@@ -1,0 +1,257 @@
+//! The step itself: the control from the current estimate (or the measured
+//! state), then the estimate and the clock advanced, committed as one
+//! transaction (docs/design.md §3.2-3.8). The first step (latch, bumpless
+//! start) is compiled apart from the steady one.
+
+use super::output::Limits;
+use super::recover::{in_range, width_in_range, Cause};
+use super::{recover, Controller, Measured};
+use crate::error::StepError;
+use crate::{differentiator, manifold, Real};
+
+impl<T: Real, const N: usize> Controller<T, N> {
+    /// Every step: computes the control from the current estimate (or the
+    /// measured state), then advances the estimate and the clock by `dt`
+    /// (`None`: the nominal period) and commits, or changes nothing on an
+    /// error (except a law overflow after the first step, see the module docs).
+    #[inline(always)]
+    pub(super) fn control_then_advance(
+        &mut self,
+        measured: Measured<T, N>,
+        one_off_dt: Option<T>,
+        applied: Option<T>,
+    ) -> Result<T, StepError> {
+        if self.state.started {
+            self.control_then_advance_from::<false>(measured, one_off_dt, applied)
+        } else {
+            self.first_control_then_advance(measured, one_off_dt, applied)
+        }
+    }
+
+    /// The first step (latch, bumpless start): once per run, kept out of the
+    /// steady step so that its branches cost the steady step nothing.
+    #[cold]
+    #[inline(never)]
+    fn first_control_then_advance(
+        &mut self,
+        measured: Measured<T, N>,
+        one_off_dt: Option<T>,
+        applied: Option<T>,
+    ) -> Result<T, StepError> {
+        self.control_then_advance_from::<true>(measured, one_off_dt, applied)
+    }
+
+    /// [`Self::control_then_advance`] for a first step (`FIRST`) or a later one.
+    #[inline(always)]
+    fn control_then_advance_from<const FIRST: bool>(
+        &mut self,
+        measured: Measured<T, N>,
+        one_off_dt: Option<T>,
+        applied: Option<T>,
+    ) -> Result<T, StepError> {
+        let c = &self.config;
+        let off = c.estimate_offset();
+        let finite = match &measured {
+            Measured::Error(e) => e.is_finite(),
+            Measured::State(z) => z.iter().skip(off).all(|v| v.is_finite()),
+        };
+        if !finite {
+            return Err(StepError::NonFiniteInput);
+        }
+        let dt = match one_off_dt {
+            Some(dt) if !(dt.is_finite() && dt > T::zero()) => return Err(StepError::InvalidDt),
+            Some(dt) => dt,
+            None => c.dt(),
+        };
+        let first = FIRST;
+        let settle_time = c.settle_time();
+        // This step's discretization (a one-off period is rediscretized).
+        let one_off;
+        let hgd = match one_off_dt.and_then(|dt| c.discretize_at(dt)) {
+            Some(d) => {
+                one_off = d.map_err(|_| StepError::InvalidDt)?;
+                Some(&one_off)
+            }
+            None => c.discretized(),
+        };
+        // The measured sample, the vector the law uses, and the estimate the
+        // next step will use (all in the law's coordinates).
+        // Without a differentiator the next step measures its own vector.
+        let carried = hgd.is_some();
+        let (e, mut z, mut next) = match measured {
+            Measured::Error(e) => match hgd {
+                Some(d) => {
+                    let z = self.current_estimate(e);
+                    (e, self.limited(z), d.advance(&z, e))
+                }
+                // Order 1 needs no differentiator: Z = (e) (or (I, e)) is measured.
+                None if !differentiator::needed_at(c.plant_order()) => {
+                    let mut z = [e; N];
+                    if let (1, Some(i)) = (off, z.first_mut()) {
+                        *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
+                    }
+                    (e, z, z)
+                }
+                None => return Err(StepError::NoDifferentiator),
+            },
+            Measured::State(mut z) => {
+                let e = z.get(off).copied().unwrap_or_else(T::zero);
+                if let (1, Some(i)) = (off, z.first_mut()) {
+                    *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
+                }
+                let zhat = if self.state.started { self.state.zhat } else { z };
+                let next = match c.discretized() {
+                    Some(d) => d.advance(&zhat, e),
+                    None => z,
+                };
+                (e, z, next)
+            }
+        };
+        if applied.is_some_and(|a| !a.is_finite()) {
+            return Err(StepError::NonFiniteApplied);
+        }
+        // A one-off period within the scale range of §3.9 (the clock then
+        // stays finite for any number of samples).
+        let in_scale = one_off_dt.is_none() || crate::error::scale(dt, "dt").is_ok();
+        let Some(clock_next) = self.state.clock.advanced(dt, settle_time).filter(|_| in_scale) else {
+            return Err(StepError::InvalidDt);
+        };
+        // Beyond this point a failure after the first step consumes the
+        // sample and restarts the estimate (the recovery rule, recover.rs).
+        if carried && !in_range(&next) {
+            return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Update));
+        }
+        let t = self.state.clock.law_time(settle_time);
+        // Bumpless start with integral action: the I_0 whose output is u0.
+        if let (true, 1, Some(u0)) = (first, off, c.initial_output()) {
+            let i0 = self.initial_integral(&z, u0, t);
+            if let Some(z0) = z.first_mut() {
+                *z0 = i0;
+            }
+        }
+
+        // The law (eqs. (11), (28)-(32)), with the envelopes latched from
+        // this very state at the first step.
+        let c = &self.config;
+        let constraint = c.constraint();
+        let m = if constraint.needs_s(first) {
+            manifold::evaluate(&z, c.laws())
+        } else {
+            manifold::evaluate_prev(&z, c.laws())
+        };
+        // A failed first step leaves the envelopes as they were.
+        let unlatched = if first { Some(self.state.envelopes) } else { None };
+        let flexible = c.rho_e().map(|rho_e| (rho_e, c.transition()));
+        let mut eval = constraint.evaluate(
+            c.last_law(),
+            &m,
+            &mut self.state.envelopes,
+            first.then(|| (c.latch(), c.k0())),
+            t,
+            flexible,
+        );
+        // Bumpless start without integral action: the latch for u0.
+        if let (true, 0, Some(u0)) = (first, off, c.initial_output()) {
+            let env = self.bumpless_envelopes(&z, self.state.envelopes, u0, t);
+            self.state.envelopes = env;
+            eval = constraint.evaluate(c.last_law(), &m, &mut self.state.envelopes, None, t, flexible);
+        }
+        let v = -c.k_u() * c.gamma().eval(eval.xi);
+        let env = &self.state.envelopes;
+        let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
+        if !(latched && v.is_finite() && eval.xi.is_finite()) {
+            if let Some(envelopes) = unlatched {
+                self.state.envelopes = envelopes;
+            }
+            return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Law));
+        }
+
+        // The output limits, what is known of the actuator, the integral
+        // separation and the health count (docs/design.md §3.8).
+        let previous = if first {
+            c.initial_output()
+        } else {
+            Some(self.state.diag.v)
+        };
+        let limited = Limits {
+            magnitude: c.output_limits(),
+            rate: c.rate_limit().map(|r| (r, dt)),
+            previous,
+            applied: if first { None } else { applied },
+            k_u: c.k_u(),
+        }
+        .apply(v);
+        let integral = z.first().copied().filter(|_| off == 1);
+        let mut integrating = false;
+        if let (Some(i), Some(n0)) = (integral, next.first_mut()) {
+            let (width, eps) = match constraint {
+                crate::Constraint::Longitudinal { eps } => (eval.nominal.1, *eps),
+                crate::Constraint::Lateral { eps } => (eval.nominal.0, *eps),
+                crate::Constraint::Oblique { eps_x, .. } => (eval.nominal.0, *eps_x),
+            };
+            integrating = limited.integrates(e, eval.xi_nominal.abs() * width <= eps);
+            let i_next = if integrating { i + dt * e } else { i };
+            if !in_range(&[i_next]) {
+                if let Some(envelopes) = unlatched {
+                    self.state.envelopes = envelopes;
+                }
+                return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Update));
+            }
+            *n0 = i_next;
+        }
+
+        let (x_u, y_u) = eval.nominal;
+        let factor = eval.expansion;
+        let expanded = factor > T::one();
+        let st = &mut self.state;
+        // Field by field: the manifold values and the time are never stored
+        // (`diagnostics()` computes them), so they are not written either.
+        let d = &mut st.diag;
+        d.saturation_gap = applied.map(|a| d.v - a);
+        d.xi = eval.xi;
+        d.xi_nominal = eval.xi_nominal;
+        d.bounds = (
+            (factor * x_u).min(T::max_value()),
+            (factor * y_u).min(T::max_value()),
+        );
+        d.nominal_bounds = (x_u, y_u);
+        d.z_hat = z;
+        d.expanded = expanded;
+        d.expansion = factor;
+        d.clamp_count = d.clamp_count.saturating_add(u64::from(eval.clamped));
+        d.v = limited.u;
+        d.v_unlimited = v;
+        d.integral = integral;
+        d.integrating = integrating;
+        d.unsaturated_expansions = d
+            .unsaturated_expansions
+            .saturating_add(u64::from(expanded && limited.headroom()));
+        st.started = true;
+        st.zhat = next;
+        st.sampled = st.clock;
+        st.clock = clock_next;
+        Ok(limited.u)
+    }
+
+    /// The estimate for this step: the stored one, or the initial one.
+    #[inline]
+    fn current_estimate(&self, e: T) -> [T; N] {
+        if self.state.started {
+            return self.state.zhat;
+        }
+        recover::initial_estimate(&self.config, e)
+    }
+
+    /// The estimate after the optional saturation `|z_hat_i| <= limit_i`
+    /// (the integral, slot 0 with integral action, is not limited).
+    #[inline]
+    fn limited(&self, mut z: [T; N]) -> [T; N] {
+        if let Some(limits) = self.config.estimate_limits() {
+            z.iter_mut()
+                .zip(limits.iter())
+                .skip(self.config.estimate_offset())
+                .for_each(|(z, l)| *z = z.max(-*l).min(*l));
+        }
+        z
+    }
+}
