@@ -25,7 +25,7 @@ use crate::{Real, Transition};
 
 /// The expansion factor `x~_U / x_U = y~_U / y_U >= 1` of eq. (30) (WxyUxyL) for
 /// distance `d_sc >= 0`, nominal half-width `d_u > 0` and margin `rho_e > 0`.
-#[inline]
+#[inline(always)]
 pub fn expansion<T: Real>(transition: Transition, d_sc: T, d_u: T, rho_e: T) -> T {
     let ts = transition.double_ended((d_sc - (d_u - rho_e)) / rho_e);
     if ts == T::zero() {

@@ -44,7 +44,7 @@ pub struct Offset<T> {
 /// let x = inverse(&h, h.eval(0.7));
 /// assert!((x - 0.7).abs() < 1e-14);
 /// ```
-#[inline]
+#[inline(always)]
 pub fn inverse<T: Real>(law: &SkewedLaw<T>, y: T) -> T {
     if law.skew().is_none() {
         if let Some(x) = law.feedback().inverse_closed_form(y) {
