@@ -4,7 +4,7 @@
 #
 #   scripts/mutants.sh               the seeded slice that ./scripts/test.sh runs: the
 #                                    round-robin shard MUTANTS_SEED % MUTANTS_SHARDS of
-#                                    MUTANTS_SHARDS of famcc-core's mutants (~7;
+#                                    MUTANTS_SHARDS of famcc-core's mutants (~11;
 #                                    MUTANTS_OUT names the report directory)
 #   scripts/mutants.sh --diff [BASE] the famcc-core mutants in the lines changed
 #                                    against BASE (default: main), as before a merge

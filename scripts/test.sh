@@ -56,7 +56,7 @@ cargo test -q -p famcc-core --benches
 cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
-# Mutation testing: a fixed, seeded slice of famcc-core's mutants (~7, ~5
+# Mutation testing: a fixed, seeded slice of famcc-core's mutants (~11, ~5
 # minutes; docs/mutation.md). A mutant that survives and is not triaged in
 # .cargo/mutants-equivalent.txt fails here. `scripts/mutants.sh --full` runs all.
 bash scripts/mutants.sh
