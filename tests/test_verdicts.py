@@ -354,3 +354,27 @@ def test_check_lists_the_failed_claims_only():
     ]
     good = _result(np.where(k < 100, 1.0, 0.0), limits=sc.u_limits, expanded=np.zeros(501, bool))
     assert sc.check(good) == []
+
+
+def test_a_diverged_run_fails_its_settling_claims_instead_of_raising():
+    # The exact ZOH at dt = mu (200 Hz, mu = 5 ms) destabilises rfc: the plant
+    # state goes non-finite at about 0.5 s. Scenario.run stops the run there
+    # (flagged diverged) and every settling claim fails, none is "untested".
+    sc, res, found = _run("rfc", dt=5e-3, differentiator=H(5e-3, [4.0, 6.0, 4.0], "exact"))
+    assert res.diverged and res.diverged_at is not None and res.diverged_at < 1.0
+    assert found["settling"].status == "failed"
+    assert "diverged at" in found["settling"].detail
+    assert any(c.startswith("settling: failed") for c in sc.check(res))
+
+
+def test_diverged_synthetic_runs_fail_settles_and_settled_by():
+    r = _result(np.full(100, 0.01))  # inside the band throughout ...
+    assert verdicts.settles(r, 0.1, 10.0).status == "held"
+    assert verdicts.settled_by(r, 0.1, 0.5).status == "held"
+    r.diverged_at = 0.99  # ... but stopped as diverged
+    for v in (
+        verdicts.settles(r, 0.1, 10.0),
+        verdicts.settled_by(r, 0.1, 0.5),
+        verdicts.settling(r, 0.1, 0.2, 0.3),
+    ):
+        assert v.status == "failed" and "diverged at 0.99 s" in v.detail, v

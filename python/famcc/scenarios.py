@@ -61,6 +61,9 @@ EXTENSION_MARGIN = 2.0
 MAX_EXTENSIONS = 3
 #: Never simulate a scenario longer than this (s).
 MAX_HORIZON = 40.0
+#: |z1| (output units) beyond which :meth:`Scenario.run` stops a run as diverged:
+#: 10^6 times the paper's largest initial error.
+DIVERGE_AT = 1e6
 
 _NAMES = (
     "finite-time",
@@ -153,6 +156,10 @@ class Scenario:
         ``substeps`` RK4 steps per sample (default :func:`substeps_for`, so that the
         plant is integrated equally finely at every sample rate).
 
+        A run that diverges (``|z1| >`` :data:`DIVERGE_AT`, or a non-finite
+        plant state) stops there and is returned flagged ``diverged``: its
+        claims then fail in :meth:`check`, instead of the run raising.
+
         Without ``t_end``, a saturated scenario runs long enough for its
         recovery claim to fall due: when the last saturation episode's bound
         ``max(T_e, T_s) + T'`` lies beyond the paper's 10 s horizon, the run is
@@ -174,6 +181,7 @@ class Scenario:
                 reference=Sine(),
                 u_limits=self.u_limits,
                 substeps=substeps,
+                diverge_at=DIVERGE_AT,
             )
 
         res = once(horizon)

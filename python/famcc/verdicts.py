@@ -188,6 +188,14 @@ def _is_due(window: tuple[float, float, float], horizon: float) -> bool:
 # ---------------------------------------------------------------------------
 
 
+def _diverged(result: Any, name: str, claim: str) -> Verdict | None:
+    """A failed verdict for a run :func:`famcc.simulate` stopped as diverged."""
+    at = getattr(result, "diverged_at", None)
+    if at is None:
+        return None
+    return Verdict(name, claim, "failed", f"the run diverged at {float(at):.3g} s (stopped there)")
+
+
 def settling(result: Any, eps: float, settle_time: float, t_prime: float) -> Verdict:
     """``|z1| < eps`` for good from ``max(T_e, T_s) + T'`` on (Corollaries 1-3)."""
     t_e, bound = _last_bound(result, settle_time, t_prime)
@@ -195,6 +203,8 @@ def settling(result: Any, eps: float, settle_time: float, t_prime: float) -> Ver
     ts = result.settling_time(eps)
     where = f"max(T_e, T_s) + T' = max({t_e:.3g}, {settle_time:g}) + {t_prime:.3g}"
     claim = f"|z1| < {eps:g} for good from {where} = {bound:.3g} s on"
+    if (diverged := _diverged(result, "settling", claim)) is not None:
+        return diverged
     if bound > horizon:
         return Verdict(
             "settling",
@@ -273,6 +283,8 @@ def settles(result: Any, eps: float, within: float, known_failure: bool = False)
     """
     horizon = min(float(result.t[-1]), within)
     claim = f"settled by {horizon:g} s: |z1| < {eps:g} from some time on until {horizon:g} s"
+    if (diverged := _diverged(result, "settles", claim)) is not None:
+        return diverged
     t = np.asarray(result.t)
     upto = t <= horizon + 1e-9 * max(1.0, horizon)
     z1 = np.abs(np.asarray(result.z1, dtype=float))[upto]
@@ -383,6 +395,8 @@ def settled_by(result: Any, eps: float, by: float) -> Verdict:
     horizon = float(result.t[-1])
     ts = result.settling_time(eps)
     claim = f"|z1| < {eps:g} for good from {by:g} s on (required)"
+    if (diverged := _diverged(result, "settled-by", claim)) is not None:
+        return diverged
     if by > horizon:
         return Verdict(
             "settled-by",
