@@ -363,3 +363,28 @@ fn the_settle_time_rule_warns_down_to_half_the_rate_and_fails_below() {
         );
     }
 }
+
+#[test]
+fn the_flexible_margin_is_where_the_law_reaches_the_far_limit() {
+    // rho_e = eps_s min(max(2 exp(-u_far / k_u), 1e-6), 1e-3), u_far the
+    // larger input limit: the margin shrinks as the limits grow against k_u.
+    // u_far / k_u of 2.3 (the 1e-3 cap), 10.5 and 13.2 (in between), 22 (the 1e-6 floor).
+    let cases = [
+        ((-5.0, 5.0), 4.0),
+        ((-19.1, 19.1), 2.0),
+        ((-30.0, 10.0), 2.5),
+        ((-1e3, 1e3), 1.0),
+    ];
+    let mut between = 0;
+    for (limits, hold) in cases {
+        let mut r = req(2);
+        r.u_limits = limits;
+        r.hold_input = hold;
+        let d = design(&r).unwrap();
+        let u_far = f64::max(-limits.0, limits.1);
+        let want = d.eps_s * (2.0 * (-u_far / d.k_u).exp()).clamp(1e-6, 1e-3);
+        assert_eq!(d.rho_e, want, "limits {limits:?}: k_u {}", d.k_u);
+        between += usize::from(want > 1.0001e-6 * d.eps_s && want < 0.9999e-3 * d.eps_s);
+    }
+    assert_eq!(between, 2);
+}
