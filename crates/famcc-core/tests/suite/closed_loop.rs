@@ -21,32 +21,6 @@ fn t_prime(example: u8) -> f64 {
     }
 }
 
-fn simulate(example: u8, variant: Variant, limits: (f64, f64)) -> Run {
-    match example {
-        1 => run(
-            &Second::new(variant),
-            &mut example1::<f64>(variant, DT),
-            T_END,
-            limits,
-            10,
-        ),
-        2 => run(
-            &Second::new(variant),
-            &mut example2::<f64>(variant, DT),
-            T_END,
-            limits,
-            10,
-        ),
-        _ => run(
-            &Third::new(variant),
-            &mut example3::<f64>(variant, DT),
-            T_END,
-            limits,
-            10,
-        ),
-    }
-}
-
 fn report(name: &str, r: &Run) {
     let (lo, hi) = r.u_range();
     let first = r.z1.iter().position(|z| z.abs() < EPS_Z).map(|i| r.t[i]);
@@ -72,7 +46,7 @@ fn check_invariants(r: &Run, limits: (f64, f64)) {
 }
 
 fn check_unsaturated(example: u8, variant: Variant) {
-    let r = simulate(example, variant, UNSAT);
+    let r = paper_loop(example, variant, UNSAT);
     report(&format!("example {example} {variant:?} unsaturated"), &r);
     check_invariants(&r, UNSAT);
     let bound = T_S + t_prime(example);
@@ -83,7 +57,7 @@ fn check_unsaturated(example: u8, variant: Variant) {
 /// Saturated run: regains |z1| < eps_z by max(T_e, T_s) + T', and the
 /// bounds expand while saturated and are nominal after the last expansion.
 fn check_saturated(example: u8, variant: Variant, limits: (f64, f64)) -> Run {
-    let r = simulate(example, variant, limits);
+    let r = paper_loop(example, variant, limits);
     report(&format!("example {example} {variant:?} saturated {limits:?}"), &r);
     check_invariants(&r, limits);
     check_expansion(&r);
@@ -256,7 +230,7 @@ fn saturated_recovery_after_every_episode_20s() {
 #[test]
 fn example3_saturated_paper_stays_bounded() {
     let limits = (-7.0, 9.0);
-    let r = simulate(3, Variant::Paper, limits);
+    let r = paper_loop(3, Variant::Paper, limits);
     report("example 3 Paper saturated (-7, 9)", &r);
     check_invariants(&r, limits);
 }
@@ -266,7 +240,7 @@ fn example3_saturated_paper_stays_bounded() {
 #[test]
 fn second_order_paper_variant_saturated() {
     for (ex, limits) in [(1, (-2.5, 3.0)), (2, (-2.0, 3.0))] {
-        let r = simulate(ex, Variant::Paper, limits);
+        let r = paper_loop(ex, Variant::Paper, limits);
         report(&format!("example {ex} Paper saturated {limits:?}"), &r);
         check_invariants(&r, limits);
         let t_e = r.last_saturation_end().unwrap_or(0.0);

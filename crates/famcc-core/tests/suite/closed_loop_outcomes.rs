@@ -17,8 +17,6 @@
 use crate::common;
 use common::*;
 
-const DT: f64 = 1e-3;
-const T_END: f64 = 10.0;
 const EPS_Z: f64 = 0.1;
 
 /// What one run measured. `None`: never settled / never entered.
@@ -91,32 +89,6 @@ const SCENARIOS: [(&str, u8, (f64, f64)); 6] = [
     ("rfc-saturated", 3, SAT3),
 ];
 
-fn simulate(example: u8, variant: Variant, limits: (f64, f64)) -> Run {
-    match example {
-        1 => run(
-            &Second::new(variant),
-            &mut example1::<f64>(variant, DT),
-            T_END,
-            limits,
-            10,
-        ),
-        2 => run(
-            &Second::new(variant),
-            &mut example2::<f64>(variant, DT),
-            T_END,
-            limits,
-            10,
-        ),
-        _ => run(
-            &Third::new(variant),
-            &mut example3::<f64>(variant, DT),
-            T_END,
-            limits,
-            10,
-        ),
-    }
-}
-
 fn measure(r: &Run) -> Outcome {
     assert!(!r.nonfinite, "a value became non-finite");
     let (u_min, u_max) = r.u_range();
@@ -165,7 +137,7 @@ fn committed(name: &str) -> Outcome {
 
 fn check(scenario: &str, example: u8, limits: (f64, f64), variant: Variant) {
     let name = name_of(scenario, variant);
-    let got = measure(&simulate(example, variant, limits));
+    let got = measure(&paper_loop(example, variant, limits));
     if std::env::var_os("FAMCC_PRINT_OUTCOMES").is_some() {
         println!("    (\"{name}\", {got:?}),");
         return;

@@ -168,3 +168,33 @@ pub fn example3<T: Real>(variant: Variant, dt: f64) -> Controller<T, 3> {
 pub fn example3_cfg<T: Real>(variant: Variant, dt: f64) -> Option<Config<T, 3>> {
     designs::example3(variant, T::from_f64(dt)).ok()
 }
+
+/// The paper's example `example` (1, 2, 3) in `variant` over 10 s at 1 kHz
+/// with the input limits `limits`, the plant by RK4 with 10 substeps.
+pub fn paper_loop(example: u8, variant: Variant, limits: (f64, f64)) -> Run {
+    const DT: f64 = 1e-3;
+    const T_END: f64 = 10.0;
+    match example {
+        1 => run(
+            &Second::new(variant),
+            &mut example1::<f64>(variant, DT),
+            T_END,
+            limits,
+            10,
+        ),
+        2 => run(
+            &Second::new(variant),
+            &mut example2::<f64>(variant, DT),
+            T_END,
+            limits,
+            10,
+        ),
+        _ => run(
+            &Third::new(variant),
+            &mut example3::<f64>(variant, DT),
+            T_END,
+            limits,
+            10,
+        ),
+    }
+}
