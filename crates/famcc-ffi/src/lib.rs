@@ -135,3 +135,6 @@ mod tests_options;
 
 #[cfg(test)]
 mod tests_orders;
+
+#[cfg(test)]
+mod tests_variants;
