@@ -968,3 +968,20 @@ fn jet_sqrt_derivatives_by_hand() {
         );
     }
 }
+
+#[test]
+fn bracketed_root_needs_finite_ends() {
+    use famcc_core::constraint::bracketed_root;
+    // A sign change to a non-finite end is no bracket: None, as the docs say.
+    let f = |x: f64| if x < 1.5 { 1.0 - x } else { f64::NEG_INFINITY };
+    assert_eq!(bracketed_root(f, 0.0, 2.0), None);
+    let g = |x: f64| if x < 1.5 { 1.0 - x } else { f64::NAN };
+    assert_eq!(bracketed_root(g, 0.0, 2.0), None);
+    assert_eq!(
+        bracketed_root(|x: f64| if x > 0.5 { 1.0 - x } else { f64::NAN }, 0.0, 2.0),
+        None
+    );
+    // Finite ends that differ in sign: the root.
+    let r = bracketed_root(f, 0.0, 1.4).unwrap();
+    assert!((r - 1.0).abs() < 1e-15, "{r}");
+}
