@@ -981,6 +981,17 @@ fn bracketed_root_needs_finite_ends() {
         bracketed_root(|x: f64| if x > 0.5 { 1.0 - x } else { f64::NAN }, 0.0, 2.0),
         None
     );
+    // A refinement step that lands where f is not finite stops there and
+    // keeps the better end of the bracket (|f(0)| = 1 < |f(4)| = 3).
+    let holed = |x: f64| {
+        if (0.5..3.5).contains(&x) {
+            f64::NAN
+        } else {
+            x - 1.0
+        }
+    };
+    assert_eq!(bracketed_root(holed, 0.0, 4.0), Some(0.0));
+    assert_eq!(bracketed_root(|x: f64| -holed(4.0 - x), 0.0, 4.0), Some(4.0));
     // Finite ends that differ in sign: the root.
     let r = bracketed_root(f, 0.0, 1.4).unwrap();
     assert!((r - 1.0).abs() < 1e-15, "{r}");
