@@ -427,3 +427,19 @@ fn the_chatter_lint_suggests_the_gain_at_its_rule() {
         );
     }
 }
+
+#[test]
+fn an_unreachable_first_output_with_integral_action_is_the_nearest_reachable() {
+    // u0 = +-1e3 lies beyond what the first latch allows (|xi_0| <= 1/k0 =
+    // 0.5, |v_0| <= k_u Gamma(0.5) = 4 ln 3): I_0 gives the nearest output,
+    // on the side of u0.
+    for u0 in [1e3, -1e3] {
+        let b = builder::<f64, 3>(4.0).integral(true).initial_output(Some(u0));
+        let mut c = Controller::new(b.build().unwrap());
+        let v = c.step(0.05).unwrap();
+        let xi = c.diagnostics().xi;
+        assert_eq!(v.signum(), u0.signum(), "u0 {u0}: v {v}");
+        assert!((xi.abs() - 0.5).abs() < 1e-6, "u0 {u0}: xi {xi}");
+        assert!((v.abs() - 4.0 * 3.0_f64.ln()).abs() < 1e-5, "u0 {u0}: v {v}");
+    }
+}
