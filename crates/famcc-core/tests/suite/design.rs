@@ -388,3 +388,13 @@ fn the_flexible_margin_is_where_the_law_reaches_the_far_limit() {
     }
     assert_eq!(between, 2);
 }
+
+#[test]
+fn integral_action_is_off_by_default_at_the_largest_order() {
+    // With a known gain the design adds integral action below MAX_ORDER only
+    // (the law would need order MAX_ORDER + 1).
+    let d = design(&req(famcc_core::design::MAX_ORDER)).unwrap();
+    assert!(!d.integral);
+    assert_eq!(d.law_order, famcc_core::design::MAX_ORDER);
+    assert!(design(&req(famcc_core::design::MAX_ORDER - 1)).unwrap().integral);
+}

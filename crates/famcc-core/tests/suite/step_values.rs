@@ -1008,3 +1008,24 @@ fn bracketed_root_needs_finite_ends() {
     let r = bracketed_root(f, 0.0, 1.4).unwrap();
     assert!((r - 1.0).abs() < 1e-15, "{r}");
 }
+
+#[test]
+fn jet_logistic_matches_its_composition() {
+    use famcc_core::jet::Jet;
+    // logistic(x) = 1 / (1 + exp(-x)), through the jets' own exp and recip.
+    for x in [
+        Jet::<f64, 5>::from_derivatives([0.3, 1.0, -0.5, 0.25, 2.0]),
+        Jet::<f64, 5>::from_derivatives([-2.0, 0.7, 1.5, -1.0, 0.1]),
+    ] {
+        let fast = x.logistic();
+        let slow = ((-x).exp() + 1.0).recip();
+        for k in 0..5 {
+            assert_close(
+                fast.derivative(k),
+                slow.derivative(k),
+                1e-12,
+                &format!("d^{k} logistic"),
+            );
+        }
+    }
+}
