@@ -398,3 +398,19 @@ fn integral_action_is_off_by_default_at_the_largest_order() {
     assert_eq!(d.law_order, famcc_core::design::MAX_ORDER);
     assert!(design(&req(famcc_core::design::MAX_ORDER - 1)).unwrap().integral);
 }
+
+#[test]
+fn a_negligible_noise_leaves_the_noise_free_design() {
+    // The noise rule slows the differentiator only while the noise in s_n,
+    // or the input ripple it causes (12 k_u sigma_s / eps_s), is too large:
+    // 1e-9 of noise changes nothing, a large one slows it.
+    for n in 2..=3 {
+        let clean = design(&req(n)).unwrap();
+        let mut r = req(n);
+        r.noise_std = 1e-9;
+        let quiet = design(&r).unwrap();
+        assert_eq!(quiet.mu, clean.mu, "order {n}");
+        r.noise_std = 1e-2;
+        assert!(design(&r).unwrap().mu > clean.mu, "order {n}");
+    }
+}
