@@ -162,3 +162,21 @@ fn restore_checks_every_field() {
     );
     assert_eq!(c.restore(&good), Ok(()));
 }
+
+#[test]
+fn restore_refuses_a_time_that_overflows() {
+    // t_base and k period each finite, their sum t_base + k period not: the
+    // clock could never say the time, so the snapshot is refused by t_base.
+    let mut c = controller::<f64>();
+    c.step(0.1).unwrap();
+    let mut s = c.snapshot();
+    s.t_base = 1.5e308;
+    s.period = 1e298;
+    s.k = 10_000_000_000;
+    assert_eq!(c.restore(&s).unwrap_err().parameter, "state.t_base");
+    // Far out but finite is a time like any other as far as t_base goes.
+    s.t_base = 1.0e307;
+    s.period = 1e-3;
+    s.k = 1_000;
+    assert_ne!(c.restore(&s).err().map(|e| e.parameter), Some("state.t_base"));
+}

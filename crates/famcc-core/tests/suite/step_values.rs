@@ -1029,3 +1029,19 @@ fn jet_logistic_matches_its_composition() {
         }
     }
 }
+
+#[test]
+fn single_ended_jet_keeps_normal_derivatives_where_the_value_is_subnormal() {
+    use famcc_core::jet::Jet;
+    use famcc_core::transition::single_ended_jet;
+    // T(z) = exp((z - 1) / z) at z0 = 1/721: w = -720, T = e^-720 (subnormal
+    // in f64), dT/dt = T z' / z0^2 = e^-720 * 721^2 (a normal number).
+    let z0 = 1.0 / 721.0;
+    let y = single_ended_jet(Jet::<f64, 2>::from_derivatives([z0, 1.0]));
+    let want = (-720.0_f64).exp() * 721.0 * 721.0;
+    assert!(want.is_normal());
+    assert_close(y.derivative(1), want, 1e-9, "dT/dt");
+    // Below twice the log of the smallest positive number it is flat.
+    let flat = single_ended_jet(Jet::<f64, 2>::from_derivatives([1.0 / 2000.0, 1.0]));
+    assert_eq!((flat.value(), flat.derivative(1)), (0.0, 0.0));
+}
