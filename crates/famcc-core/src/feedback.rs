@@ -325,3 +325,36 @@ fn ve_monotonicity_margin<T: Real>(a: T, b: T, r_b: T) -> T {
     };
     r_b * (one + b * u) * (one + b * u) + dip
 }
+
+#[cfg(test)]
+mod tests {
+    use super::ve_monotonicity_margin;
+
+    /// `min phi(u)` over a fine grid of `(0, 1)`, `phi(u) = r_b (1 + b u)^2 + a u (1 + b u + ln u)`.
+    fn grid_min(a: f64, b: f64, r_b: f64) -> f64 {
+        (1..200_000)
+            .map(|i| {
+                let u = i as f64 / 200_000.0;
+                r_b * (1.0 + b * u) * (1.0 + b * u) + a * u * (1.0 + b * u + u.ln())
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn the_monotonicity_margin_is_the_minimum_of_phi() {
+        for (a, b, r_b) in [
+            (1.0, 0.5, 0.5),
+            (4.0, 2.0, 0.1),
+            (0.5, 0.1, 1.0),
+            (8.0, 0.0, 0.2),
+            (3.0, 5.0, 0.05),
+        ] {
+            let m = ve_monotonicity_margin(a, b, r_b);
+            let g = grid_min(a, b, r_b);
+            assert!(
+                m <= g + 1e-12 && g - m < 1e-6 * (1.0 + g.abs()),
+                "({a}, {b}, {r_b}): {m} vs grid {g}"
+            );
+        }
+    }
+}
