@@ -394,3 +394,27 @@ def test_xi_text_never_prints_a_value_below_one_as_one():
     assert sw.xi_text(0.5) == "0.500"
     assert sw.xi_text(0.99997) == "1-3e-05"
     assert sw.xi_text(1.0) == "1"
+
+
+def test_sweep_progress_labels_name_the_limits_and_the_outcome():
+    from famcc import sweep
+
+    class Recorder:
+        def __init__(self):
+            self.steps = []
+
+        def step(self, label, seconds=None):
+            self.steps.append((label, seconds))
+
+    seen = Recorder()
+    recs = sweep.sweep(
+        ["finite-time"], rates=[1000], discretizations=["exact"], t_end=0.5, jobs=1, progress=seen
+    )
+    assert len(recs) == len(seen.steps) == 2
+    # Each label belongs to the record with its run time.
+    by_time = {r["runtime_s"]: r for r in recs}
+    for label, seconds in seen.steps:
+        rec = by_time[seconds]
+        lim = "+limits" if rec["limited"] else ""
+        tag = "OK" if rec["ok"] else "fail"
+        assert label == f"finite-time 1000 Hz exact{lim} ({tag})"

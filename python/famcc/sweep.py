@@ -166,6 +166,8 @@ def run_one(
             substeps=substeps_for(dt),
             differentiator=_differentiator(sc, discretization, limited, limit_factor),
         )
+        if res.diverged:  # stopped there by Scenario.run
+            raise FloatingPointError(f"the run diverged at t = {res.diverged_at:.4g} s")
     except (FloatingPointError, ValueError, OverflowError, ArithmeticError) as exc:
         rec["error"] = f"{type(exc).__name__}: {exc}"
         # famcc.ConfigError: rejected at construction (e.g. an unstable

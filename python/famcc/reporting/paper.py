@@ -104,6 +104,8 @@ def reproduce(
         t0 = time.perf_counter()
         try:
             res = sc.run(dt=dt, t_end=t_end)
+            if res.diverged:  # stopped there by Scenario.run: a record without metrics
+                raise FloatingPointError(f"the run diverged at t = {res.diverged_at:.4g} s")
         except (FloatingPointError, OverflowError) as exc:
             rec = diverged(sc, exc, time.perf_counter() - t0)
             records.append(rec)
