@@ -983,27 +983,17 @@ fn bracketed_root_needs_finite_ends() {
     );
     // A refinement step that lands where f is not finite stops there and
     // keeps the better end of the bracket (|f(0)| = 1 < |f(4)| = 3).
-    let holed = |x: f64| {
-        if (0.5..3.5).contains(&x) {
-            f64::NAN
-        } else {
-            x - 1.0
-        }
-    };
+    // `x - root` with a hole (NaN) on `[lo, hi)`.
+    let with_hole =
+        |lo: f64, hi: f64, root: f64| move |x: f64| if (lo..hi).contains(&x) { f64::NAN } else { x - root };
+    let holed = with_hole(0.5, 3.5, 1.0);
     assert_eq!(bracketed_root(holed, 0.0, 4.0), Some(0.0));
     assert_eq!(bracketed_root(|x: f64| -holed(4.0 - x), 0.0, 4.0), Some(4.0));
     // A bracket within a factor of 4 of itself (here exactly 4) takes the
     // regula falsi step, which lands on the root 3 of this linear f; the
     // geometric step (sqrt(1 * 4) = 2, for brackets over many binades) would
     // land in the hole.
-    let holed2 = |x: f64| {
-        if (1.5..2.5).contains(&x) {
-            f64::NAN
-        } else {
-            x - 3.0
-        }
-    };
-    assert_eq!(bracketed_root(holed2, 1.0, 4.0), Some(3.0));
+    assert_eq!(bracketed_root(with_hole(1.5, 2.5, 3.0), 1.0, 4.0), Some(3.0));
     // Finite ends that differ in sign: the root.
     let r = bracketed_root(f, 0.0, 1.4).unwrap();
     assert!((r - 1.0).abs() < 1e-15, "{r}");
