@@ -304,7 +304,7 @@ fn ve_monotonicity_margin<T: Real>(a: T, b: T, r_b: T) -> T {
     let c = two * r_b * b / a;
     let psi = |v: T| v + two + two * b * v.exp() + c * (one + b * v.exp());
     let mut hi = -two - c;
-    let mut lo = hi - one - two * b - c * b;
+    let mut lo = ve_left_end(hi, b, c);
     for _ in 0..200 {
         let mid = (lo + hi) / two;
         if !(mid > lo && mid < hi) {
@@ -326,17 +326,26 @@ fn ve_monotonicity_margin<T: Real>(a: T, b: T, r_b: T) -> T {
     r_b * (one + b * u) * (one + b * u) + dip
 }
 
+/// The left end of [`ve_monotonicity_margin`]'s bisection, `hi - 1 - (2 +
+/// c) b`, where `psi < 0`: for `v <= hi = -2 - c`, `psi(v) <= v + 2 + c +
+/// (2 + c) b e^(-2-c)`, and `(2 + c) e^(-2-c) < 1` for `c >= 0` (a, b, c > 0
+/// for every valid law: `0 < r_b < 1 < r_1 < r_t`).
+fn ve_left_end<T: Real>(hi: T, b: T, c: T) -> T {
+    hi - T::one() - (T::from_f64(2.0) + c) * b
+}
+
 #[cfg(test)]
 mod tests {
     use super::ve_monotonicity_margin;
 
-    /// `min phi(u)` over a fine grid of `(0, 1)`, `phi(u) = r_b (1 + b u)^2 + a u (1 + b u + ln u)`.
+    /// `min phi(u)` over a fine grid of `(0, 1)` (uniform, and log-spaced
+    /// down to `1e-12`), `phi(u) = r_b (1 + b u)^2 + a u (1 + b u + ln u)`.
     fn grid_min(a: f64, b: f64, r_b: f64) -> f64 {
-        (1..200_000)
-            .map(|i| {
-                let u = i as f64 / 200_000.0;
-                r_b * (1.0 + b * u) * (1.0 + b * u) + a * u * (1.0 + b * u + u.ln())
-            })
+        let uniform = (1..200_000).map(|i| i as f64 / 200_000.0);
+        let logs = (0..200_000).map(|i| 10f64.powf(-12.0 * i as f64 / 200_000.0));
+        uniform
+            .chain(logs)
+            .map(|u| r_b * (1.0 + b * u) * (1.0 + b * u) + a * u * (1.0 + b * u + u.ln()))
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -348,7 +357,25 @@ mod tests {
             (0.5, 0.1, 1.0),
             (8.0, 0.0, 0.2),
             (3.0, 5.0, 0.05),
-        ] {
+        ]
+        .into_iter()
+        .chain(
+            // Valid laws (r_b, r_1, r_t) at the extremes of b = (r_1 - r_b) /
+            // (r_t - r_1) and c = 2 r_b b / a: b = 1e4 with c = 0.02 or 2e-5,
+            // b = 0.01 with c = 0.01, c = 15 with b = 11, and c = 2.2 (> 2)
+            // with an interior minimum.
+            [
+                (0.01, 1.01, 1.0101),
+                (0.001, 100.0, 100.01),
+                (0.5, 1.5, 101.0),
+                (0.9, 1.01, 1.02),
+                (0.6, 1.05, 1.15),
+            ]
+            .map(|(r_b, r_1, r_t): (f64, f64, f64)| {
+                let b = (r_1 - r_b) / (r_t - r_1);
+                ((r_t - r_b) * b, b, r_b)
+            }),
+        ) {
             let m = ve_monotonicity_margin(a, b, r_b);
             let g = grid_min(a, b, r_b);
             assert!(

@@ -236,6 +236,14 @@ impl<T: Real, const N: usize> Config<T, N> {
         self.initial_output
     }
 
+    /// True without output limits, a rate limit and integral action: the
+    /// step's limits, integral separation and health count then do nothing
+    /// (unless the caller tells the applied input).
+    #[inline(always)]
+    pub fn unlimited(&self) -> bool {
+        self.output_limits.is_none() && self.rate_limit.is_none() && !self.integral
+    }
+
     /// A 52-bit fingerprint of the configuration's values (FNV-1a over
     /// their `Debug` text), exact in an `f64`. Snapshots carry it, so that a
     /// state is never restored into a controller with another configuration.

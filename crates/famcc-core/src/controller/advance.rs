@@ -3,11 +3,11 @@
 //! transaction (docs/design.md §3.2-3.8). The first step (latch, bumpless
 //! start) is compiled apart from the steady one.
 
-use super::output::Limits;
+use super::output::{Limited, Limits};
 use super::recover::{in_range, width_in_range, Cause};
 use super::{recover, Controller, Measured};
 use crate::error::StepError;
-use crate::{differentiator, manifold, Real};
+use crate::{differentiator, manifold, DiscreteHgd, Real};
 
 impl<T: Real, const N: usize> Controller<T, N> {
     /// Every step: computes the control from the current estimate (or the
@@ -21,10 +21,16 @@ impl<T: Real, const N: usize> Controller<T, N> {
         one_off_dt: Option<T>,
         applied: Option<T>,
     ) -> Result<T, StepError> {
-        if self.state.started {
-            self.control_then_advance_from::<false>(measured, one_off_dt, applied)
+        if !self.state.started {
+            return self.first_control_then_advance(measured, one_off_dt, applied);
+        }
+        // Without output limits, integral action or a told input, the limits,
+        // the integral separation and the health count are known to do
+        // nothing: that step is compiled apart, so they cost it nothing.
+        if applied.is_none() && self.config.unlimited() {
+            self.control_then_advance_from::<false, true>(measured, one_off_dt, None)
         } else {
-            self.first_control_then_advance(measured, one_off_dt, applied)
+            self.control_then_advance_from::<false, false>(measured, one_off_dt, applied)
         }
     }
 
@@ -38,12 +44,14 @@ impl<T: Real, const N: usize> Controller<T, N> {
         one_off_dt: Option<T>,
         applied: Option<T>,
     ) -> Result<T, StepError> {
-        self.control_then_advance_from::<true>(measured, one_off_dt, applied)
+        self.control_then_advance_from::<true, false>(measured, one_off_dt, applied)
     }
 
-    /// [`Self::control_then_advance`] for a first step (`FIRST`) or a later one.
+    /// [`Self::control_then_advance`] for a first step (`FIRST`) or a later
+    /// one, and for a configuration with nothing to limit or integrate and
+    /// no told input (`UNLIMITED`, see [`crate::Config::unlimited`]).
     #[inline(always)]
-    fn control_then_advance_from<const FIRST: bool>(
+    fn control_then_advance_from<const FIRST: bool, const UNLIMITED: bool>(
         &mut self,
         measured: Measured<T, N>,
         one_off_dt: Option<T>,
@@ -75,22 +83,21 @@ impl<T: Real, const N: usize> Controller<T, N> {
             None => c.discretized(),
         };
         // The measured sample, the vector the law uses, and the estimate the
-        // next step will use (all in the law's coordinates).
+        // next step will use (all in the law's coordinates). The
+        // differentiator's update of this step's estimate is computed after
+        // the law, so that its values need not live through the law's calls.
         // Without a differentiator the next step measures its own vector.
         let carried = hgd.is_some();
-        let (e, mut z, mut next) = match measured {
+        let (e, mut z, plan) = match measured {
             Measured::Error(e) => match hgd {
-                Some(d) => {
-                    let z = self.current_estimate(e);
-                    (e, self.limited(z), d.advance(&z, e))
-                }
+                Some(d) => (e, self.limited(self.current_estimate(e)), Next::Update(d)),
                 // Order 1 needs no differentiator: Z = (e) (or (I, e)) is measured.
                 None if !differentiator::needed_at(c.plant_order()) => {
                     let mut z = [e; N];
                     if let (1, Some(i)) = (off, z.first_mut()) {
                         *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
                     }
-                    (e, z, z)
+                    (e, z, Next::Known(z))
                 }
                 None => return Err(StepError::NoDifferentiator),
             },
@@ -104,7 +111,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
                     Some(d) => d.advance(&zhat, e),
                     None => z,
                 };
-                (e, z, next)
+                (e, z, Next::Known(next))
             }
         };
         if applied.is_some_and(|a| !a.is_finite()) {
@@ -113,15 +120,12 @@ impl<T: Real, const N: usize> Controller<T, N> {
         // A one-off period within the scale range of §3.9 (the clock then
         // stays finite for any number of samples).
         let in_scale = one_off_dt.is_none() || crate::error::scale(dt, "dt").is_ok();
-        let Some(clock_next) = self.state.clock.advanced(dt, settle_time).filter(|_| in_scale) else {
+        let Some((t, clock_next)) = self.state.clock.sample(dt, settle_time).filter(|_| in_scale) else {
             return Err(StepError::InvalidDt);
         };
         // Beyond this point a failure after the first step consumes the
-        // sample and restarts the estimate (the recovery rule, recover.rs).
-        if carried && !in_range(&next) {
-            return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Update));
-        }
-        let t = self.state.clock.law_time(settle_time);
+        // sample and restarts the estimate (the recovery rule, recover.rs):
+        // an update out of range is the cause whatever the law gave.
         // Bumpless start with integral action: the I_0 whose output is u0.
         if let (true, 1, Some(u0)) = (first, off, c.initial_output()) {
             let i0 = self.initial_integral(&z, u0, t);
@@ -159,11 +163,14 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let v = -c.k_u() * c.gamma().eval(eval.xi);
         let env = &self.state.envelopes;
         let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
-        if !(latched && v.is_finite() && eval.xi.is_finite()) {
+        let mut next = self.next_estimate(plan, e);
+        let updated = !carried || in_range(&next);
+        if !(updated & latched & v.is_finite() & eval.xi.is_finite()) {
             if let Some(envelopes) = unlatched {
                 self.state.envelopes = envelopes;
             }
-            return Err(self.state.consume(c, &measured, hgd, clock_next, Cause::Law));
+            let cause = if updated { Cause::Law } else { Cause::Update };
+            return Err(self.state.consume(c, &measured, hgd, clock_next, cause));
         }
 
         // The output limits, what is known of the actuator, the integral
@@ -173,15 +180,19 @@ impl<T: Real, const N: usize> Controller<T, N> {
         } else {
             Some(self.state.diag.v)
         };
-        let limited = Limits {
-            magnitude: c.output_limits(),
-            rate: c.rate_limit().map(|r| (r, dt)),
-            previous,
-            applied: if first { None } else { applied },
-            k_u: c.k_u(),
-        }
-        .apply(v);
-        let integral = z.first().copied().filter(|_| off == 1);
+        let limited = if UNLIMITED {
+            Limited::unlimited(v)
+        } else {
+            Limits {
+                magnitude: c.output_limits(),
+                rate: c.rate_limit().map(|r| (r, dt)),
+                previous,
+                applied: if first { None } else { applied },
+                k_u: c.k_u(),
+            }
+            .apply(v)
+        };
+        let integral = z.first().copied().filter(|_| !UNLIMITED && off == 1);
         let mut integrating = false;
         if let (Some(i), Some(n0)) = (integral, next.first_mut()) {
             let (width, eps) = match constraint {
@@ -210,10 +221,9 @@ impl<T: Real, const N: usize> Controller<T, N> {
         d.saturation_gap = applied.map(|a| d.v - a);
         d.xi = eval.xi;
         d.xi_nominal = eval.xi_nominal;
-        d.bounds = (
-            (factor * x_u).min(T::max_value()),
-            (factor * y_u).min(T::max_value()),
-        );
+        // `min(T::MAX)` without its NaN handling (a NaN product gives MAX either way).
+        let capped = |w: T| if w < T::max_value() { w } else { T::max_value() };
+        d.bounds = (capped(factor * x_u), capped(factor * y_u));
         d.nominal_bounds = (x_u, y_u);
         d.z_hat = z;
         d.expanded = expanded;
@@ -231,6 +241,15 @@ impl<T: Real, const N: usize> Controller<T, N> {
         st.sampled = st.clock;
         st.clock = clock_next;
         Ok(limited.u)
+    }
+
+    /// The estimate the next step uses.
+    #[inline(always)]
+    fn next_estimate(&self, plan: Next<'_, T, N>, e: T) -> [T; N] {
+        match plan {
+            Next::Known(next) => next,
+            Next::Update(d) => d.advance(&self.current_estimate(e), e),
+        }
     }
 
     /// The estimate for this step: the stored one, or the initial one.
@@ -254,4 +273,12 @@ impl<T: Real, const N: usize> Controller<T, N> {
         }
         z
     }
+}
+
+/// The estimate the next step uses: known, or the differentiator's update of
+/// this step's estimate (stored or initial, before its limits) with the sample.
+#[derive(Clone, Copy)]
+enum Next<'a, T, const N: usize> {
+    Known([T; N]),
+    Update(&'a DiscreteHgd<T, N>),
 }

@@ -42,6 +42,10 @@ pub(super) struct Clock<T> {
     pub period: T,
     /// `min(base, T_s)` in `T`: the law's time base.
     law_base: T,
+    /// True once a sample of this run had the law's time `T_s`: every later
+    /// one has it too (the time is non-decreasing in `k`), so the settled
+    /// step skips the product.
+    law_settled: bool,
 }
 
 impl<T: Real> Clock<T> {
@@ -52,6 +56,7 @@ impl<T: Real> Clock<T> {
             k: 0,
             period: dt,
             law_base: T::zero(),
+            law_settled: false,
         }
     }
 
@@ -63,6 +68,7 @@ impl<T: Real> Clock<T> {
             k,
             period,
             law_base: law_base(base, settle_time),
+            law_settled: false,
         }
     }
 
@@ -72,35 +78,50 @@ impl<T: Real> Clock<T> {
         self.base + self.k as f64 * self.period.to_f64_lossless()
     }
 
-    /// The law's time of the next sample: `min(t, T_s)` in `T`. Bit for bit
-    /// `k * dt` while a run at the nominal period starts at 0 (the paper's
-    /// sampled law) and `t < T_s`.
+    /// The law's time of the next sample: `min(t, T_s)` in `T`.
     #[inline(always)]
-    pub fn law_time(&self, settle_time: T) -> T {
-        if self.law_base >= settle_time {
+    fn law_time(&self, settle_time: T) -> T {
+        // (A run that starts at or after `T_s` needs no test of its own:
+        // `law_base >= T_s` makes every `t` below `>= T_s`.)
+        if self.law_settled {
             return settle_time;
         }
-        (self.law_base + T::from_u64(self.k) * self.period).min(settle_time)
+        let t = self.law_base + T::from_u64(self.k) * self.period;
+        // `t.min(settle_time)` without its NaN handling (`t` is never NaN).
+        if t < settle_time {
+            t
+        } else {
+            settle_time
+        }
     }
 
-    /// The clock after this sample, taken with period `dt`: the run goes on
-    /// when `dt` is its period, otherwise a new run starts at this sample.
-    /// `None` when the time would not be finite.
+    /// The next sample, taken with period `dt`: the law's time of this sample
+    /// (`min(t, T_s)` in `T`, bit for bit `k * dt` while a run at the nominal
+    /// period starts at 0, the paper's sampled law, and `t < T_s`), and the
+    /// clock after it. The run goes on when `dt` is its period, otherwise a
+    /// new run starts at this sample. `None` when the time would not be finite.
     #[inline(always)]
-    pub fn advanced(&self, dt: T, settle_time: T) -> Option<Self> {
+    pub fn sample(&self, dt: T, settle_time: T) -> Option<(T, Self)> {
+        let t = self.law_time(settle_time);
         if dt == self.period {
-            return Some(Self {
+            let next = Self {
                 k: self.k.saturating_add(1),
+                law_settled: t >= settle_time,
                 ..*self
-            });
+            };
+            return Some((t, next));
         }
         let base = self.time();
-        let next = base + dt.to_f64_lossless();
-        next.is_finite().then(|| Self {
-            base,
-            k: 1,
-            period: dt,
-            law_base: law_base(base, settle_time),
+        let end = base + dt.to_f64_lossless();
+        end.is_finite().then(|| {
+            let next = Self {
+                base,
+                k: 1,
+                period: dt,
+                law_base: law_base(base, settle_time),
+                law_settled: false,
+            };
+            (t, next)
         })
     }
 }

@@ -87,6 +87,17 @@ impl<T: Real> Limits<T> {
 }
 
 impl<T: Real> Limited<T> {
+    /// What [`Limits::apply`] gives with no limit configured and no input
+    /// told: `v` itself, beyond no limit, none known.
+    #[inline(always)]
+    pub fn unlimited(v: T) -> Self {
+        Self {
+            u: v,
+            beyond: 0,
+            known: false,
+        }
+    }
+
     /// True when the actuator is known to have headroom: limits known and
     /// the law's output within them.
     #[inline]

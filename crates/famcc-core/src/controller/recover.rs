@@ -33,7 +33,8 @@ pub const RECOVERY_SAMPLES: usize = 2;
 #[inline(always)]
 pub(super) fn in_range<T: Real, const N: usize>(z: &[T; N]) -> bool {
     let r = T::estimate_range();
-    z.iter().all(|v| v.abs() <= r)
+    // Without short-circuit, so that the comparisons vectorize.
+    z.iter().fold(true, |ok, v| ok & (v.abs() <= r))
 }
 
 /// True when a latched envelope width can be used: finite (the oblique

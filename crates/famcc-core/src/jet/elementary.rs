@@ -82,7 +82,9 @@ impl<T: Real, const K: usize> Jet<T, K> {
     /// value `inf`, first derivative `2e200 x'`), the recurrence runs on
     /// `(x/x0)^p` and each coefficient is rescaled by `x0^p` through logs, so
     /// the first derivative stays finite and accurate (and exact zeros stay
-    /// zero); higher derivatives stay finite but may lose accuracy there.
+    /// zero); higher derivatives may lose accuracy there, or overflow where
+    /// `(x'/x0)^k` does (e.g. `x^1.6` at `x = 1e-200`, `x' = 1`: the second
+    /// derivative `0.96e80` comes out infinite).
     #[inline]
     pub fn powf(&self, p: T) -> Self {
         if p == T::from_f64(2.0) {

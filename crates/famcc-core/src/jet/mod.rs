@@ -284,6 +284,33 @@ mod tests {
     }
 
     #[test]
+    fn powf_keeps_a_normal_first_derivative_where_its_value_is_subnormal() {
+        // x(t) = 1e-200 + t (+ t^2 / 2): x^1.6 = 1e-320 is subnormal, but its
+        // first derivative by hand, p x^(p-1) x' = 1.6e-120, is normal.
+        let y = Jet::<f64, 2>::from_derivatives([1e-200, 1.0])
+            .powf(1.6)
+            .derivatives();
+        assert!(!y[0].is_normal() && y[0] > 0.0, "{}", y[0]);
+        assert!((y[1] / 1.6e-120 - 1.0).abs() < 1e-12, "{}", y[1]);
+        let y = Jet::<f64, 3>::from_derivatives([1e-200, 1.0, 1.0])
+            .powf(1.6)
+            .derivatives();
+        assert!((y[1] / 1.6e-120 - 1.0).abs() < 1e-12, "{}", y[1]);
+    }
+
+    #[test]
+    fn powf_keeps_finite_derivatives_where_its_value_overflows() {
+        // x(t) = 1e124 + 1e121 t: x^2.5 = 1e310 overflows, while by hand
+        // y' = 2.5 x^1.5 x' = 2.5e307 and y'' = 3.75 x^0.5 x'^2 = 3.75e304.
+        let y = Jet::<f64, 3>::from_derivatives([1e124, 1e121, 0.0])
+            .powf(2.5)
+            .derivatives();
+        assert_eq!(y[0], f64::INFINITY);
+        assert!((y[1] / 2.5e307 - 1.0).abs() < 1e-12, "{}", y[1]);
+        assert!((y[2] / 3.75e304 - 1.0).abs() < 1e-12, "{}", y[2]);
+    }
+
+    #[test]
     fn shift_is_time_derivative() {
         let x = Jet::<f64, 3>::from_derivatives([1.0, 2.0, 3.0]);
         assert_eq!(x.shift().derivatives(), [2.0, 3.0, 0.0]);

@@ -180,3 +180,20 @@ fn restore_refuses_a_time_that_overflows() {
     s.k = 1_000;
     assert_ne!(c.restore(&s).err().map(|e| e.parameter), Some("state.t_base"));
 }
+
+#[test]
+fn a_clock_far_out_takes_a_new_period_like_any_other() {
+    // A run at 1e300 s that changes to a 1e10 s period (both in range): the
+    // new run starts at this sample's time, and its end 1e300 + 1e10 is
+    // finite, so the step is taken (a product base * dt would overflow).
+    let mut c = controller::<f64>();
+    c.step(0.1).unwrap();
+    let mut s = c.snapshot();
+    s.t_base = 1e300;
+    s.k = 0;
+    c.restore(&s).unwrap();
+    assert!(c.step_dt(0.1, 1e10, None).is_ok());
+    assert_eq!(c.diagnostics().t, 1e300);
+    assert_eq!(c.snapshot().t_base, 1e300);
+    assert_eq!(c.snapshot().k, 1);
+}

@@ -4,6 +4,7 @@
 //! differentiator's `ConfigError` and `Config::lint`, in f64 and f32.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
+use crate::common;
 use famcc_core::config::Lint;
 use famcc_core::{
     Config, ConfigBuilder, Constraint, Controller, Discretization, Feedback, HighGain, Real, Skew,
@@ -441,5 +442,57 @@ fn an_unreachable_first_output_with_integral_action_is_the_nearest_reachable() {
         assert_eq!(v.signum(), u0.signum(), "u0 {u0}: v {v}");
         assert!((xi.abs() - 0.5).abs() < 1e-6, "u0 {u0}: xi {xi}");
         assert!((v.abs() - 4.0 * 3.0_f64.ln()).abs() < 1e-5, "u0 {u0}: v {v}");
+    }
+}
+
+/// Replays the error samples `z1` into a fresh `ctrl` twice: with `step`,
+/// and telling it each time that the actuator applied its previous output
+/// exactly (a told input takes the step's general path, with the limits'
+/// and the health count's arithmetic). Nothing is limited or revealed, so
+/// the outputs and the diagnostics agree bit for bit, apart from the
+/// saturation gap (0 once told) and the health count (the told input shows
+/// headroom).
+fn told_input_changes_nothing<T: Real, const N: usize>(ctrl: Controller<T, N>, z1: &[f64]) {
+    let (mut quiet, mut told) = (ctrl, ctrl);
+    let mut last = None;
+    for (k, &e) in z1.iter().enumerate() {
+        let e = T::from_f64(e);
+        let a = quiet.step(e).unwrap();
+        let b = told.step_applied(e, last).unwrap();
+        last = Some(b);
+        assert_eq!(
+            a.to_f64_lossless().to_bits(),
+            b.to_f64_lossless().to_bits(),
+            "sample {k}"
+        );
+        let (mut dq, mut dt) = (quiet.diagnostics(), told.diagnostics());
+        assert_eq!(
+            dt.saturation_gap.map(|g| g.to_f64_lossless()),
+            (k > 0).then_some(0.0)
+        );
+        dq.saturation_gap = None;
+        dt.saturation_gap = None;
+        dt.unsaturated_expansions = dq.unsaturated_expansions;
+        assert_eq!(format!("{dq:?}"), format!("{dt:?}"), "sample {k}");
+    }
+}
+
+#[test]
+fn a_told_input_equal_to_the_last_output_changes_nothing_in_the_papers_loops() {
+    for variant in Variant::ALL {
+        for (n, example) in Example::ALL.into_iter().enumerate() {
+            // The paper's loop, unsaturated: its expansions show in the told
+            // run's health count, and nowhere else.
+            let run = common::paper_loop(n as u8 + 1, variant, common::UNSAT);
+            assert!(!run.nonfinite);
+            match design::<f64>(example, variant, DT).unwrap() {
+                Design::Order2(c) => told_input_changes_nothing(Controller::new(c), &run.z1),
+                Design::Order3(c) => told_input_changes_nothing(Controller::new(c), &run.z1),
+            }
+            match design::<f32>(example, variant, DT as f32).unwrap() {
+                Design::Order2(c) => told_input_changes_nothing(Controller::new(c), &run.z1),
+                Design::Order3(c) => told_input_changes_nothing(Controller::new(c), &run.z1),
+            }
+        }
     }
 }
