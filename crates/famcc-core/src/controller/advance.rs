@@ -175,14 +175,14 @@ impl<T: Real, const N: usize> Controller<T, N> {
 
         // The output limits, what is known of the actuator, the integral
         // separation and the health count (docs/design.md §3.8).
-        let previous = if first {
-            c.initial_output()
-        } else {
-            Some(self.state.diag.v)
-        };
         let limited = if UNLIMITED {
             Limited::unlimited(v)
         } else {
+            let previous = if first {
+                c.initial_output()
+            } else {
+                Some(self.state.diag.v)
+            };
             Limits {
                 magnitude: c.output_limits(),
                 rate: c.rate_limit().map(|r| (r, dt)),
