@@ -31,11 +31,14 @@ def test_state_layout_names_period_and_config() -> None:
         "last_v",
         "period",
         "config",
+        "filtered",
     )
     ctrl = example1()
     ctrl.step(0.1)
     s = ctrl.state()
     assert s[FIELDS.index("period")] == 1e-3
+    # without a prefilter the differentiator's last input is the sample itself
+    assert s[FIELDS.index("filtered")] == 0.1
     assert s.shape == (len(FIELDS) + 2,)
 
 
@@ -55,6 +58,8 @@ def test_state_layout_names_period_and_config() -> None:
         ("last_v", np.inf),
         ("period", 0.0),
         ("config", 1.0),
+        ("filtered", np.inf),
+        ("filtered", np.nan),
     ],
 )
 def test_set_state_checks_every_slot(field: str, value: float) -> None:

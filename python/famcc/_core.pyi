@@ -501,21 +501,30 @@ class HighGain:
         one per order, in the unit of each estimate (``z_k`` in the unit of
         ``e`` per s^(k-1)), all ``> 0`` (``inf``: no limit for that
         estimate); None: no limits.
+    prefilter : float, default 0.0
+        Time constant ``tau`` of a first-order low-pass stage on the measured
+        error in front of the differentiator, s (``>= 0``; 0: none, the
+        paper's differentiator). Against measurement noise: it rolls the
+        noise off by one more order above ``1/tau`` for a lag of about
+        ``tau``; :func:`famcc.design` with ``noise_std`` sets ``mu / 2``. Not
+        in the paper.
 
     Raises
     ------
     famcc.ConfigError
-        ``mu <= 0``, coefficients that are not Hurwitz, or ``limits`` of the
-        wrong length or not ``> 0``.
+        ``mu <= 0``, coefficients that are not Hurwitz, ``limits`` of the
+        wrong length or not ``> 0``, or ``prefilter < 0``.
 
     Examples
     --------
     >>> import famcc
     >>> h = famcc.HighGain(0.01, [4.0, 4.0])
-    >>> h.a, h.discretization, h.limits
-    ((4.0, 4.0), 'exact', None)
+    >>> h.a, h.discretization, h.limits, h.prefilter
+    ((4.0, 4.0), 'exact', None, 0.0)
     >>> famcc.HighGain.default(2) == h
     True
+    >>> famcc.HighGain(0.02, [4.0, 6.0, 4.0], prefilter=0.01)
+    HighGain(mu=0.02, a=[4.0, 6.0, 4.0], discretization='exact', prefilter=0.01)
     """
 
     __hash__: ClassVar[None]  # type: ignore[assignment]
@@ -525,6 +534,7 @@ class HighGain:
         a: Sequence[float],
         discretization: _Discretization = "exact",
         limits: Sequence[float] | None = None,
+        prefilter: float = 0.0,
     ) -> HighGain: ...
     @staticmethod
     def default(
@@ -599,7 +609,10 @@ class HighGain:
     def limits(self) -> tuple[float, ...] | None:
         """The estimates' limits, or None."""
     def __eq__(self, value: object, /) -> bool: ...
-    def __getnewargs__(self) -> tuple[float, list[float], str, list[float] | None]: ...
+    @property
+    def prefilter(self) -> float:
+        """The prefilter's time constant, s (0: none)."""
+    def __getnewargs__(self) -> tuple[float, list[float], str, list[float] | None, float]: ...
 
 # -- controller ------------------------------------------------------------------
 

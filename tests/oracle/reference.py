@@ -654,6 +654,8 @@ class ReferenceController:
         self._flex_s = _double(transition)[0]
         # -- differentiator --
         self.limits = None
+        # the prefilter's gain per period (1: none): f_k = f + b (e_k - f)
+        self.prefilter_gain = 1.0
         if differentiator == "auto":
             differentiator = None if order == 1 else ("auto",)
         if differentiator is None:
@@ -667,6 +669,9 @@ class ReferenceController:
                 method = getattr(differentiator, "discretization", "exact")
                 lim = getattr(differentiator, "limits", None)
                 self.limits = None if lim is None else tuple(float(x) for x in lim)
+                tau = float(getattr(differentiator, "prefilter", 0.0))
+                if tau > 0.0:
+                    self.prefilter_gain = -math.expm1(-dt / tau)
             if len(a) != order:
                 raise ValueError(f"differentiator.a must have {order} coefficients")
             self.phi, self.gamma_vec = discretize_hgd(mu, a, dt, method)
@@ -699,6 +704,7 @@ class ReferenceController:
         self._t_base = 0.0
         self._k = 0
         self._zhat = [0.0] * self.order
+        self._filtered = 0.0
         self._rho0_x, self._rho0_y = self.eps_x, self.eps_y
         self._clamps = 0
         self._last_v = 0.0
@@ -717,8 +723,8 @@ class ReferenceController:
 
     def state(self) -> list:
         """``[started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period,
-        config, zhat...]`` (the layout of ``famcc.Controller.state()``; the
-        compiled core's configuration fingerprint is not known here: 0)."""
+        config, filtered, zhat...]`` (the layout of ``famcc.Controller.state()``;
+        the compiled core's configuration fingerprint is not known here: 0)."""
         return [
             1.0 if self._started else 0.0,
             self._t_base,
@@ -729,20 +735,22 @@ class ReferenceController:
             self._last_v,
             self.dt,
             0.0,
+            self._filtered,
             *self._zhat,
         ]
 
     def set_state(self, v: Sequence[float]) -> None:
         """Continues from a vector returned by ``state()`` (either implementation's)."""
         v = [float(x) for x in v]
-        if len(v) != 9 + self.order:
-            raise ValueError(f"state must have {9 + self.order} entries")
+        if len(v) != 10 + self.order:
+            raise ValueError(f"state must have {10 + self.order} entries")
         self.reset()
         self._started = v[0] != 0.0
         self._t_base, self._k = v[1], int(v[2])
         self._rho0_x, self._rho0_y = v[3], v[4]
         self._clamps, self._last_v = int(v[5]), v[6]
-        self._zhat = v[9:]
+        self._filtered = v[9]
+        self._zhat = v[10:]
 
     @property
     def diagnostics(self) -> ReferenceDiagnostics:
@@ -874,6 +882,13 @@ class ReferenceController:
 
     # -- stepping ---------------------------------------------------------------
 
+    def _input(self, e: float) -> float:
+        """The differentiator's input for the sample ``e``: ``e`` itself at the
+        first step or without a prefilter, else ``f + b (e - f)``."""
+        if not self._started or self.prefilter_gain == 1.0:
+            return e
+        return self._filtered + self.prefilter_gain * (e - self._filtered)
+
     def _advance(self, zhat: Sequence[float], e: float) -> list:
         """``Phi zhat + Gamma e``, each row summed left to right from ``Gamma_i e``."""
         out = []
@@ -899,10 +914,10 @@ class ReferenceController:
                 zhat = self._zhat
             else:
                 zhat = [e, *self.initial_derivatives]
-            nxt = self._advance(zhat, e)
+            nxt = self._advance(zhat, self._input(e))
         if self.limits is not None:
             zhat = [max(-lim, min(lim, z)) for z, lim in zip(zhat, self.limits)]
-        return self._finish(zhat, nxt, applied, [e, *self.initial_derivatives], e)
+        return self._finish(zhat, nxt, applied, [e, *self.initial_derivatives], e, self._input(e))
 
     def step_state(self, z: Sequence[float], applied: float | None = None) -> float:
         """One state-feedback step with the measured error vector ``z = (z1..zn)``."""
@@ -912,8 +927,8 @@ class ReferenceController:
         if self.phi is None:
             nxt = z
         else:
-            nxt = self._advance(self._zhat if self._started else z, z[0])
-        return self._finish(z, nxt, applied, z, z[0])
+            nxt = self._advance(self._zhat if self._started else z, self._input(z[0]))
+        return self._finish(z, nxt, applied, z, z[0], self._input(z[0]))
 
     def _restart(self, seed: list, e: float, law_failed: bool) -> None:
         """The recovery rule: the estimate restarts from ``seed`` (the first
@@ -923,11 +938,13 @@ class ReferenceController:
         for s, x in ([(seed, e)] if law_failed else []) + [(zero, 0.0)]:
             nxt = s if self.phi is None else self._advance(s, x)
             if all(abs(v) <= ESTIMATE_RANGE for v in nxt):
-                self._zhat = nxt
+                self._zhat, self._filtered = nxt, x
                 break
         self._k += 1
 
-    def _finish(self, z: list, nxt: list, applied: float | None, seed: list, e: float) -> float:
+    def _finish(
+        self, z: list, nxt: list, applied: float | None, seed: list, e: float, filtered: float
+    ) -> float:
         if applied is not None:
             applied = float(applied)
             if not math.isfinite(applied):
@@ -956,6 +973,7 @@ class ReferenceController:
             self._rho0_x, self._rho0_y = self._new_rho0_x, self._new_rho0_y
         self._started = True
         self._zhat = nxt
+        self._filtered = filtered
         self._k += 1
         self._last_v = v
         self.xi = d["xi"]

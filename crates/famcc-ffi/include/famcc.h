@@ -574,6 +574,11 @@ typedef struct FamccDifferentiator_f32 {
    * A `FAMCC_DISCRETIZATION_*` value.
    */
   uint32_t discretization;
+  /**
+   * Time constant of the low-pass prefilter on the error in front of the
+   * differentiator, seconds (`>= 0`; 0, the default: none, the paper's).
+   */
+  float prefilter;
 } FamccDifferentiator_f32;
 
 /**
@@ -891,6 +896,11 @@ typedef struct FamccDifferentiator_f64 {
    * A `FAMCC_DISCRETIZATION_*` value.
    */
   uint32_t discretization;
+  /**
+   * Time constant of the low-pass prefilter on the error in front of the
+   * differentiator, seconds (`>= 0`; 0, the default: none, the paper's).
+   */
+  double prefilter;
 } FamccDifferentiator_f64;
 
 /**

@@ -192,7 +192,7 @@ pub(crate) fn to_config<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<C
             "discretization",
             "must be a FAMCC_DISCRETIZATION_* value",
         )?;
-        Some(HighGain::new(d.mu, first_n(&d.a), disc))
+        Some(HighGain::new(d.mu, first_n(&d.a), disc).with_prefilter(d.prefilter))
     } else {
         None
     };

@@ -137,4 +137,7 @@ mod tests_options;
 mod tests_orders;
 
 #[cfg(test)]
+mod tests_variant_cases;
+
+#[cfg(test)]
 mod tests_variants;

@@ -57,6 +57,7 @@ fn c_config<T: Real, const N: usize>(cfg: &Config<T, N>) -> FamccConfig<T> {
         c.differentiator.mu = h.mu;
         c.differentiator.a.iter_mut().zip(h.a).for_each(|(d, s)| *d = s);
         c.differentiator.discretization = convert::to_c(&convert::DISCRETIZATIONS, h.discretization);
+        c.differentiator.prefilter = h.prefilter;
     }
     c
 }

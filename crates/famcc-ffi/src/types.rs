@@ -279,6 +279,9 @@ pub struct FamccDifferentiator<T> {
     pub a: [T; FAMCC_MAX_ORDER],
     /// A `FAMCC_DISCRETIZATION_*` value.
     pub discretization: u32,
+    /// Time constant of the low-pass prefilter on the error in front of the
+    /// differentiator, seconds (`>= 0`; 0, the default: none, the paper's).
+    pub prefilter: T,
 }
 
 /// Everything that defines a controller (mirrors `famcc_core::Config`).

@@ -75,6 +75,7 @@ pub fn design_rules<'py>(
             Discretization::Tustin => "tustin",
         },
     )?;
+    out.set_item("prefilter", d.prefilter)?;
     out.set_item("lambda", d.lambda)?;
     out.set_item("loop_rate", d.loop_rate)?;
     out.set_item("k_u", d.k_u)?;

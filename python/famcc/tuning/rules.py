@@ -17,7 +17,8 @@ _RULES = {
     "spectral radius < 1",
     "accuracy": "without integral action the offset under the hold input, "
     "eps_s tanh(hold / 2 k_u) / lambda^(n-1), stays below eps",
-    "noise": "noise in s below 0.15 eps_s and 6 sigma of the output noise below 5 % of the range",
+    "noise": "noise in s below 0.15 eps_s, and 4 sigma of the input noise within the headroom "
+    "the hold input leaves on the nearer limit (prefilter mu / 2 at orders 2-3)",
     "gain-unknown": "the input gain G is known, so the loop rate can be set and checked",
     "estimate-limits": "at order >= 4 the estimates are limited (4 max_error loop_rate^(i-1)), "
     "which keeps the differentiator's start-up peaking out of the law",
@@ -165,7 +166,8 @@ class Design:
         The inputs of :func:`design`.
     parameters : dict
         The chosen numbers: ``law_order``, ``integral``, ``mu``, ``a``,
-        ``discretization``, ``lambda`` (stage rate, 1/s), ``loop_rate``
+        ``discretization``, ``prefilter`` (the differentiator's low-pass
+        prefilter time constant, s; 0: none), ``lambda`` (stage rate, 1/s), ``loop_rate``
         (``lambda_s``, 1/s), ``k_u``, ``eps_s`` (the constraint's final width on
         ``s``), ``rho_e``, ``k0``, ``settle_time`` (the envelope's ``T_s``).
     checks : tuple of Finding
@@ -221,6 +223,7 @@ class Design:
                     list(p["a"]),
                     discretization=p["discretization"],
                     limits=p.get("estimate_limits"),
+                    prefilter=p.get("prefilter", 0.0),
                 )
                 if n > 1
                 else None
@@ -264,6 +267,11 @@ class Design:
             lines.append(
                 f"- differentiator: mu = {p['mu']:.4g} s ({p['mu'] / dt:.3g} samples"
                 + (", slowed for the noise" if r["noise_std"] else "")
+                + (
+                    f", behind a low-pass prefilter of {p['prefilter']:.4g} s"
+                    if p.get("prefilter")
+                    else ""
+                )
                 + f"), coefficients "
                 f"(s+2)^{n} = {tuple(round(a, 6) for a in p['a'])}, {p['discretization']} "
                 "discretization"

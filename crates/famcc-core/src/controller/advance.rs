@@ -97,7 +97,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
                     if let (1, Some(i)) = (off, z.first_mut()) {
                         *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
                     }
-                    (e, z, Next::Known(z))
+                    (e, z, Next::Known((z, e)))
                 }
                 None => return Err(StepError::NoDifferentiator),
             },
@@ -106,10 +106,17 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 if let (1, Some(i)) = (off, z.first_mut()) {
                     *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
                 }
-                let zhat = if self.state.started { self.state.zhat } else { z };
+                let (zhat, last) = if self.state.started {
+                    (self.state.zhat, self.state.filtered)
+                } else {
+                    (z, e)
+                };
                 let next = match c.discretized() {
-                    Some(d) => d.advance(&zhat, e),
-                    None => z,
+                    Some(d) => {
+                        let f = d.filter(last, e);
+                        (d.advance(&zhat, f), f)
+                    }
+                    None => (z, e),
                 };
                 (e, z, Next::Known(next))
             }
@@ -163,7 +170,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let v = -c.k_u() * c.gamma().eval(eval.xi);
         let env = &self.state.envelopes;
         let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
-        let mut next = self.next_estimate(plan, e);
+        let (mut next, filtered) = self.next_estimate::<FIRST>(plan, e);
         let updated = !carried || in_range(&next);
         if !(updated & latched & v.is_finite() & eval.xi.is_finite()) {
             if let Some(envelopes) = unlatched {
@@ -238,17 +245,24 @@ impl<T: Real, const N: usize> Controller<T, N> {
             .saturating_add(u64::from(expanded && limited.headroom()));
         st.started = true;
         st.zhat = next;
+        st.filtered = filtered;
         st.sampled = st.clock;
         st.clock = clock_next;
         Ok(limited.u)
     }
 
-    /// The estimate the next step uses.
+    /// The estimate the next step uses, and the differentiator's input of
+    /// this sample (the prefiltered `e`, or `e`).
     #[inline(always)]
-    fn next_estimate(&self, plan: Next<'_, T, N>, e: T) -> [T; N] {
+    fn next_estimate<const FIRST: bool>(&self, plan: Next<'_, T, N>, e: T) -> ([T; N], T) {
         match plan {
             Next::Known(next) => next,
-            Next::Update(d) => d.advance(&self.current_estimate(e), e),
+            Next::Update(d) => {
+                // Only the first step comes before anything started.
+                let last = if FIRST { e } else { self.state.filtered };
+                let f = d.filter(last, e);
+                (d.advance(&self.current_estimate(e), f), f)
+            }
         }
     }
 
@@ -275,10 +289,11 @@ impl<T: Real, const N: usize> Controller<T, N> {
     }
 }
 
-/// The estimate the next step uses: known, or the differentiator's update of
-/// this step's estimate (stored or initial, before its limits) with the sample.
+/// The estimate the next step uses (with the differentiator's input of this
+/// sample): known, or the differentiator's update of this step's estimate
+/// (stored or initial, before its limits) with the (prefiltered) sample.
 #[derive(Clone, Copy)]
 enum Next<'a, T, const N: usize> {
-    Known([T; N]),
+    Known(([T; N], T)),
     Update(&'a DiscreteHgd<T, N>),
 }

@@ -79,6 +79,9 @@ struct State<T, const N: usize> {
     /// The estimate in the law's coordinates (with integral action slot 0
     /// holds the integral `I`).
     zhat: [T; N],
+    /// The differentiator's last input: the prefiltered error (the error
+    /// itself without a prefilter).
+    filtered: T,
     envelopes: Envelopes<T>,
     diag: Diagnostics<T, N>,
 }
@@ -97,7 +100,7 @@ impl<T: Real, const N: usize> State<T, N> {
         cause: Cause,
     ) -> StepError {
         if self.started {
-            self.zhat = recover::restarted(c, measured, hgd, cause);
+            (self.zhat, self.filtered) = recover::restarted(c, measured, hgd, cause);
             self.clock = clock_next;
         }
         StepError::Overflow
@@ -135,6 +138,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
             clock: Clock::start(config.dt()),
             sampled: Clock::start(config.dt()),
             zhat: [T::zero(); N],
+            filtered: T::zero(),
             envelopes: config.constraint().envelopes(config.settle_time()),
             diag: Diagnostics::default(),
         }

@@ -56,13 +56,14 @@ pub(super) enum Cause {
 
 /// The estimate the next step uses after this step's sample could not be
 /// used: restarted from the sample, else from a zero error (the module
-/// docs). `hgd` is this step's discretization.
+/// docs), with the differentiator's input it restarted from (the prefilter
+/// restarts at that sample). `hgd` is this step's discretization.
 pub(super) fn restarted<T: Real, const N: usize>(
     c: &Config<T, N>,
     measured: &Measured<T, N>,
     hgd: Option<&DiscreteHgd<T, N>>,
     cause: Cause,
-) -> [T; N] {
+) -> ([T; N], T) {
     let zero = Measured::Error(T::zero());
     // After an update overflow the sample is (or drove) the outlier: the
     // estimate restarts from a zero error, unless the sample is moderate
@@ -80,12 +81,12 @@ pub(super) fn restarted<T: Real, const N: usize>(
             None => seed,
         };
         if in_range(&next) {
-            return next;
+            return (next, e);
         }
     }
     // Unreachable for a validated configuration (the zero error's estimate
     // is in range, §3.9); zeros are in range in any case.
-    [T::zero(); N]
+    ([T::zero(); N], T::zero())
 }
 
 /// True when the measurement lies in the probe's range (`|.| <= PROBE_LIMIT`).

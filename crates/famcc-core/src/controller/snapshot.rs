@@ -29,7 +29,7 @@ use crate::{Config, ConfigError, Real};
 
 /// The names of the leading entries of the flat layout, in order; the
 /// estimate `z_hat[0..N]` ([`Snapshot::ESTIMATE`]) follows them.
-pub const SNAPSHOT_FIELDS: [&str; 9] = [
+pub const SNAPSHOT_FIELDS: [&str; 10] = [
     "started",
     "t_base",
     "k",
@@ -39,6 +39,7 @@ pub const SNAPSHOT_FIELDS: [&str; 9] = [
     "last_v",
     "period",
     "config",
+    "filtered",
 ];
 
 /// Everything a controller needs to continue bit-identically, as plain
@@ -65,9 +66,12 @@ pub struct Snapshot<T, const N: usize> {
     pub period: T,
     /// [`Config::fingerprint`] of the controller's configuration.
     pub config: u64,
+    /// The differentiator's last input: the prefiltered error
+    /// ([`crate::HighGain::with_prefilter`]; the error itself without one).
+    pub filtered: T,
 }
 
-const _: () = assert!(SNAPSHOT_FIELDS.len() == 9, "update split() and length_error()");
+const _: () = assert!(SNAPSHOT_FIELDS.len() == 10, "update split() and length_error()");
 
 /// The largest integer every `f64` below it represents exactly (`2^53`).
 const EXACT_INTEGERS: f64 = 9_007_199_254_740_992.0;
@@ -106,14 +110,14 @@ fn rule(ok: bool, name: &'static str, rule: &'static str) -> Result<(), ConfigEr
 
 impl<T: Real, const N: usize> Snapshot<T, N> {
     /// [`SNAPSHOT_FIELDS`].
-    pub const FIELDS: [&'static str; 9] = SNAPSHOT_FIELDS;
+    pub const FIELDS: [&'static str; 10] = SNAPSHOT_FIELDS;
     /// The name of the trailing estimate entries (`z_hat[0]`, `z_hat[1]`, ...).
     pub const ESTIMATE: &'static str = "z_hat";
     /// Length of the flat layout: the fields, then the estimate.
     pub const LEN: usize = SNAPSHOT_FIELDS.len() + N;
 
     /// Writes the flat layout `[started, t_base, k, rho0_x, rho0_y,
-    /// clamp_count, last_v, period, config, z_hat...]` into `out` (exactly
+    /// clamp_count, last_v, period, config, filtered, z_hat...]` into `out` (exactly
     /// [`Self::LEN`] entries; `started` as 1 or 0, the counts as exact
     /// integers, saturating at `2^53`).
     pub fn to_array(&self, out: &mut [f64]) -> Result<(), ConfigError> {
@@ -132,6 +136,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
             f(self.last_v),
             f(self.period),
             n(self.config),
+            f(self.filtered),
         ];
         let estimate = self.zhat.iter().map(|z| f(*z));
         out.iter_mut()
@@ -145,7 +150,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
     /// non-negative integers and values that are not finite in `T`;
     /// the rest is checked by [`crate::Controller::restore`].
     pub fn from_array(v: &[f64]) -> Result<Self, ConfigError> {
-        let ([started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period, config], estimate) =
+        let ([started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period, config, filtered], estimate) =
             split::<N>(v)?;
         rule(
             *started == 0.0 || *started == 1.0,
@@ -168,12 +173,14 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
             last_v: value(*last_v, "state.last_v")?,
             period: value(*period, "state.period")?,
             config: count(*config, "state.config")?,
+            filtered: value(*filtered, "state.filtered")?,
         })
     }
 
     /// Checks every value against the configuration `c` the state is
     /// restored into: the same fingerprint; a finite time `>= 0` and a
-    /// period `> 0`; an estimate in range (docs/design.md §3.7); widths
+    /// period `> 0`; an estimate in range (docs/design.md §3.7) and a finite
+    /// prefilter state; widths
     /// finite and at least the final ones; a finite last output within the
     /// output limits; and before the first step, the initial state itself.
     pub(crate) fn check(&self, c: &Config<T, N>) -> Result<(), ConfigError> {
@@ -210,6 +217,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
             "state.z_hat",
             "must be finite and within the estimate range (2^512 in f64, 2^64 in f32)",
         )?;
+        rule(self.filtered.is_finite(), "state.filtered", "must be finite")?;
         let (ex, ey) = c.constraint().eps();
         let widths = self.rho0_x >= ex && self.rho0_y >= ey;
         rule(
@@ -252,6 +260,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
             last_v: st.diag.v,
             period: st.clock.period,
             config: self.config.fingerprint(),
+            filtered: st.filtered,
         }
     }
 
@@ -266,6 +275,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
         st.started = snap.started;
         st.clock = Clock::at(snap.t_base, snap.k, snap.period, self.config.settle_time());
         st.zhat = snap.zhat;
+        st.filtered = snap.filtered;
         st.envelopes.x.rho0 = snap.rho0_x;
         st.envelopes.y.rho0 = snap.rho0_y;
         st.diag.clamp_count = snap.clamp_count;
@@ -278,14 +288,14 @@ impl<T: Real, const N: usize> Controller<T, N> {
 fn length_error() -> ConfigError {
     ConfigError::new(
         "state",
-        "must be a float vector of length 9 + order (the fields, then z_hat)",
+        "must be a float vector of length 10 + order (the fields, then z_hat)",
     )
 }
 
 /// The fields and the estimate of a flat vector of the right length.
 #[allow(clippy::type_complexity)]
-fn split<const N: usize>(v: &[f64]) -> Result<(&[f64; 9], &[f64]), ConfigError> {
-    match v.split_first_chunk::<9>() {
+fn split<const N: usize>(v: &[f64]) -> Result<(&[f64; 10], &[f64]), ConfigError> {
+    match v.split_first_chunk::<10>() {
         Some((head, estimate)) if estimate.len() == N => Ok((head, estimate)),
         _ => Err(length_error()),
     }

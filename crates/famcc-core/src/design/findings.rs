@@ -1,7 +1,7 @@
 //! The findings of a design ([`Check`]: a [`Rule`] at a [`Level`], with its
 //! numbers) and [`check`], which makes them against the requirements.
 
-use super::{linear, Design, Requirements, ESTIMATE_ORDER, RADIUS_WARN};
+use super::{linear, Design, Requirements, ESTIMATE_ORDER, NOISE_RATIO, RADIUS_WARN};
 use crate::error::ConfigError;
 use num_traits::Float as F;
 
@@ -31,7 +31,7 @@ pub enum Rule {
     /// feasible `eps`).
     Accuracy,
     /// The noise in `s` is small against the band and the input range
-    /// (`value` its std over `eps_s`, `limit` 0.15).
+    /// (`value` its std over `eps_s`, `limit` [`super::NOISE_RATIO`]).
     Noise,
     /// The actuator can hold the load (`value = hold_input`, `limit` the
     /// larger limit magnitude).
@@ -133,9 +133,9 @@ pub fn check(d: &mut Design, req: &Requirements) -> Result<(), ConfigError> {
     if req.noise_std > 0.0 {
         d.push(
             Rule::Noise,
-            level(noise_ratio > 0.15),
+            level(noise_ratio > NOISE_RATIO),
             noise_ratio,
-            0.15,
+            NOISE_RATIO,
             f64::NAN,
         );
     }

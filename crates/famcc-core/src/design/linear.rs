@@ -9,16 +9,42 @@
 
 use super::rules::manifold;
 use super::{Design, MAX_ORDER};
-use crate::differentiator::HighGain;
+use crate::differentiator::{prefilter_gain, HighGain};
 use crate::error::ConfigError;
 use num_traits::Float as F;
 
-/// Largest closed-loop dimension: plant, estimate and integral.
-const DIM: usize = 2 * MAX_ORDER + 1;
+/// Largest closed-loop dimension: plant, estimate (with the prefilter's
+/// state) and integral.
+const DIM: usize = 2 * MAX_ORDER + 2;
 type Mat = [[f64; DIM]; DIM];
 
-/// `Phi`, `Gamma` of the design's differentiator (order `n`), zero-padded.
-fn hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM]), ConfigError> {
+/// `Phi`, `Gamma` of the design's differentiator (order `n`), zero-padded,
+/// and its dimension: `n`, or `n + 1` with the prefilter, whose state is the
+/// last input `f_(k-1)`: with `f_k = a f_(k-1) + b e_k` (`b` the prefilter's
+/// gain, `a = 1 - b`), `Zhat_{k+1} = Phi Zhat_k + a Gamma f_(k-1) + b Gamma e_k`.
+fn hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM], usize), ConfigError> {
+    let (mut phi, mut gamma) = plain_hgd(d, n, dt)?;
+    let b = prefilter_gain(dt, d.prefilter);
+    if b == 1.0 {
+        return Ok((phi, gamma, n));
+    }
+    for (i, row) in phi.iter_mut().enumerate().take(n) {
+        if let Some(x) = row.get_mut(n) {
+            *x = (1.0 - b) * gamma.get(i).copied().unwrap_or(0.0);
+        }
+    }
+    if let Some(x) = phi.get_mut(n).and_then(|r| r.get_mut(n)) {
+        *x = 1.0 - b;
+    }
+    gamma.iter_mut().take(n).for_each(|g| *g *= b);
+    if let Some(g) = gamma.get_mut(n) {
+        *g = b;
+    }
+    Ok((phi, gamma, n + 1))
+}
+
+/// `Phi`, `Gamma` of the design's differentiator without its prefilter.
+fn plain_hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM]), ConfigError> {
     fn pad<const M: usize>(d: &Design, dt: f64) -> Result<(Mat, [f64; DIM]), ConfigError> {
         let mut a = [0.0; M];
         a.iter_mut().zip(d.a.iter()).for_each(|(x, y)| *x = *y);
@@ -80,21 +106,21 @@ fn norm(a: &Mat) -> f64 {
 /// with `P = Phi P Phi' + Gamma Gamma'` the estimate's steady covariance
 /// (doubling: `P <- P + A P A'`, `A <- A^2`).
 pub(super) fn noise_gain(d: &Design, n: usize, dt: f64) -> Result<f64, ConfigError> {
-    let (phi, gamma) = hgd(d, n, dt)?;
+    let (phi, gamma, ne) = hgd(d, n, dt)?;
     let mut p = [[0.0; DIM]; DIM];
-    for (i, row) in p.iter_mut().enumerate().take(n) {
-        for (j, v) in row.iter_mut().enumerate().take(n) {
+    for (i, row) in p.iter_mut().enumerate().take(ne) {
+        for (j, v) in row.iter_mut().enumerate().take(ne) {
             *v = gamma.get(i).copied().unwrap_or(0.0) * gamma.get(j).copied().unwrap_or(0.0);
         }
     }
     let mut a = phi;
     for _ in 0..48 {
-        let apa = mul(&mul(&a, &p, n), &transpose(&a), n);
+        let apa = mul(&mul(&a, &p, ne), &transpose(&a), ne);
         p.iter_mut()
             .flatten()
             .zip(apa.iter().flatten())
             .for_each(|(x, y)| *x += *y);
-        a = mul(&a, &a, n);
+        a = mul(&a, &a, ne);
         if norm(&a) < 1e-18 {
             break;
         }
@@ -123,13 +149,12 @@ pub(super) fn noise_gain(d: &Design, n: usize, dt: f64) -> Result<f64, ConfigErr
 /// integral), from `||M^m||^(1/m)` with `m = 2^40` by repeated squaring.
 pub(super) fn loop_radius(d: &Design, n: usize, dt: f64, gain: f64) -> Result<f64, ConfigError> {
     let estimated = n > 1;
-    let (phi, gamma) = if estimated {
+    let (phi, gamma, ne) = if estimated {
         hgd(d, n, dt)?
     } else {
-        ([[0.0; DIM]; DIM], [0.0; DIM])
+        ([[0.0; DIM]; DIM], [0.0; DIM], 0)
     };
     let ni = usize::from(d.integral);
-    let ne = if estimated { n } else { 0 };
     let dim = n + ne + ni;
     let (xp, xe, xi) = (0, n, n + ne);
     let c = manifold(d.law_order, d.lambda);

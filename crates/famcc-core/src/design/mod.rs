@@ -45,6 +45,23 @@ pub const MU_PER_DT: f64 = 10.0;
 /// The slowest differentiator the noise rule may pick, as a fraction of the
 /// settling time.
 pub const MU_PER_SETTLE: f64 = 0.05;
+/// The factor by which the noise rule raises `mu` per trial (the smallest
+/// `mu` that meets the rule, to within it).
+pub const NOISE_MU_STEP: f64 = 1.05;
+/// The largest noise in `s` the noise rule accepts, as a fraction of `eps_s`
+/// (the log map stays near its linear part).
+pub const NOISE_RATIO: f64 = 0.15;
+/// Standard deviations of the input noise the noise rule keeps within the
+/// headroom that the hold input leaves on the nearer limit.
+pub const NOISE_SIGMAS: f64 = 4.0;
+/// The prefilter's time constant as a fraction of `mu` when the design
+/// counts measurement noise (`tau = PREFILTER_PER_MU mu`; none without noise).
+pub const PREFILTER_PER_MU: f64 = 0.5;
+/// The highest plant order at which the noise rule adds the prefilter. Above
+/// it the capped time-scale ratio leaves no phase for its lag (measured: the
+/// flexible joint of order 4 at `tau = mu / 4` saturates a third of the time
+/// without any noise, where without the prefilter it settles).
+pub const PREFILTER_ORDER: usize = 3;
 /// `xi` at which the law holds `hold_input` (`k_u = hold / (2 atanh(XI_HOLD))`).
 pub const XI_HOLD: f64 = 0.5;
 
@@ -85,6 +102,10 @@ pub struct Design {
     pub a: [f64; MAX_ORDER],
     /// Differentiator discretization.
     pub discretization: Discretization,
+    /// Time constant of the differentiator's low-pass prefilter, s (0: none;
+    /// `PREFILTER_PER_MU mu` when the requirements give measurement noise,
+    /// up to order [`PREFILTER_ORDER`]).
+    pub prefilter: f64,
     /// Stage law rate `lambda` of `h_i(s) = -lambda s`, 1/s.
     pub lambda: f64,
     /// The `s`-loop rate `lambda_s`, 1/s.

@@ -3,7 +3,8 @@
 
 use super::{
     check, linear, Check, Design, Level, Requirements, Rule, ESTIMATE_FACTOR, ESTIMATE_ORDER, MAX_CHECKS,
-    MAX_ORDER, MU_PER_SETTLE, RADIUS_WARN, RATIO_ORDER,
+    MAX_ORDER, MU_PER_SETTLE, NOISE_MU_STEP, NOISE_RATIO, NOISE_SIGMAS, PREFILTER_ORDER, PREFILTER_PER_MU,
+    RADIUS_WARN, RATIO_ORDER,
 };
 use crate::differentiator::auto_discretization_at;
 use crate::error::ConfigError;
@@ -23,7 +24,7 @@ pub(super) fn manifold(n_law: usize, lambda: f64) -> [f64; MAX_ORDER] {
     c
 }
 
-/// Sets `mu` (raised for noise), the loop rate, `lambda` and `eps_s` for a
+/// Sets `mu` (raised for noise, with the prefilter), the loop rate, `lambda` and `eps_s` for a
 /// time-scale ratio; returns the noise in `s` over `eps_s`.
 fn time_scales(d: &mut Design, req: &Requirements, ratio: f64, k_u: f64) -> Result<f64, ConfigError> {
     let n = req.order;
@@ -41,16 +42,22 @@ fn time_scales(d: &mut Design, req: &Requirements, ratio: f64, k_u: f64) -> Resu
         if req.noise_std == 0.0 || n == 1 {
             break;
         }
+        if n <= PREFILTER_ORDER {
+            d.prefilter = PREFILTER_PER_MU * d.mu;
+        }
         let sigma_s = req.noise_std * linear::noise_gain(d, n, req.dt)?;
         noise_ratio = sigma_s / d.eps_s;
-        let u_noise = 6.0 * 2.0 * k_u * sigma_s / d.eps_s;
-        if noise_ratio <= 0.15 && u_noise <= 0.05 * (hi - lo) {
+        // The linearized law's input noise, NOISE_SIGMAS deep, within the
+        // headroom the hold input leaves on the nearer limit.
+        let u_noise = NOISE_SIGMAS * 2.0 * k_u * sigma_s / d.eps_s;
+        let headroom = F::max(F::min(-lo, hi) - req.hold_input.abs(), 0.05 * (hi - lo));
+        if noise_ratio <= NOISE_RATIO && u_noise <= headroom {
             break;
         }
-        if d.mu * 1.1 > MU_PER_SETTLE * req.settle_time {
+        if d.mu * NOISE_MU_STEP > MU_PER_SETTLE * req.settle_time {
             break;
         }
-        d.mu *= 1.1;
+        d.mu *= NOISE_MU_STEP;
     }
     Ok(noise_ratio)
 }
@@ -82,6 +89,7 @@ pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
         mu: req.mu_per_dt * req.dt,
         a,
         discretization,
+        prefilter: 0.0,
         lambda: 0.0,
         loop_rate: 0.0,
         k_u,

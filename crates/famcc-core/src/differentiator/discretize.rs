@@ -136,5 +136,9 @@ fn unbalance<T: Real, const N: usize>(
             return None;
         }
     }
-    Some(DiscreteHgd { phi, gamma })
+    Some(DiscreteHgd {
+        phi,
+        gamma,
+        prefilter: T::one(),
+    })
 }

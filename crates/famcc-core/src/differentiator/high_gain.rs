@@ -30,8 +30,9 @@ pub enum Discretization {
 }
 
 /// The high-gain differentiator's parameters (eq. (34), HGD): time constant `mu`
-/// (seconds), coefficients `a = (a1, ..., aN)` (dimensionless) and the
-/// discretization method.
+/// (seconds), coefficients `a = (a1, ..., aN)` (dimensionless), the
+/// discretization method, and an optional low-pass prefilter (not in the
+/// paper; [`HighGain::with_prefilter`]).
 ///
 /// ```
 /// use famcc_core::{Discretization, HighGain};
@@ -50,15 +51,46 @@ pub struct HighGain<T, const N: usize> {
     pub a: [T; N],
     /// How eq. (34) is sampled.
     pub discretization: Discretization,
+    /// Time constant `tau` of a first-order low-pass stage on `z1` in front
+    /// of eq. (34), seconds; 0 for none (the paper's differentiator).
+    pub prefilter: T,
 }
 
 impl<T: Real, const N: usize> HighGain<T, N> {
-    /// The parameters as given (not validated; see [`HighGain::validate`]).
+    /// The parameters as given (not validated; see [`HighGain::validate`]),
+    /// without a prefilter.
     pub fn new(mu: T, a: [T; N], discretization: Discretization) -> Self {
         Self {
             mu,
             a,
             discretization,
+            prefilter: T::zero(),
+        }
+    }
+
+    /// The same differentiator fed through a first-order low-pass stage
+    /// `tau f' = z1 - f` (`tau` in seconds, 0 for none), sampled exactly:
+    /// `f_k = f_(k-1) + (1 - exp(-dt/tau)) (e_k - f_(k-1))`, `f_0 = e_0`.
+    ///
+    /// Against measurement noise: the `k`-th estimate's noise grows like
+    /// `sigma / mu^(k-1)` and enters `Zhat` with every sample (`Gamma e_k`),
+    /// so the input chatters from sample to sample. The prefilter rolls the
+    /// noise off by one more order above `1 / tau` at the price of a lag of
+    /// about `tau`, which [`crate::design::design`] counts in its loop check.
+    /// Not in the paper (docs/tuning.md, "Noise").
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, HighGain};
+    /// let h = HighGain::new(0.02_f64, [4.0, 6.0, 4.0], Discretization::Exact).with_prefilter(0.01);
+    /// let d = h.discretize(1e-3).unwrap();
+    /// assert!((d.prefilter - (1.0 - (-0.1_f64).exp())).abs() < 1e-15);
+    /// assert_eq!(h.with_prefilter(0.0).discretize(1e-3).unwrap().prefilter, 1.0);
+    /// assert_eq!(h.with_prefilter(-1.0).validate().unwrap_err().parameter, "prefilter");
+    /// ```
+    pub fn with_prefilter(self, tau: T) -> Self {
+        Self {
+            prefilter: tau,
+            ..self
         }
     }
 
@@ -92,6 +124,12 @@ impl<T: Real, const N: usize> HighGain<T, N> {
     /// ```
     pub fn validate_order(&self, order: usize) -> Result<(), ConfigError> {
         positive(self.mu, "mu")?;
+        if !(self.prefilter.is_finite() && self.prefilter >= T::zero()) {
+            return Err(ConfigError::new(
+                "prefilter",
+                "must be finite and >= 0 (seconds; 0 for none, e.g. mu / 2 against noise)",
+            ));
+        }
         if order == 0 || order > N {
             return Err(ConfigError::new(
                 "a",
@@ -180,13 +218,29 @@ impl<T: Real, const N: usize> HighGain<T, N> {
         for (d, s) in a.iter_mut().zip(self.a.iter()) {
             *d = s.to_f64_lossless();
         }
-        discretize::discretize(&a, order, tau, mu, self.discretization).map_err(|f| match f {
+        let mut d = discretize::discretize(&a, order, tau, mu, self.discretization).map_err(|f| match f {
             Failure::Singular => {
                 ConfigError::new("dt", "gives a numerically singular system in the discretization")
             }
             Failure::Overflow => {
                 ConfigError::new("mu", "is so small that Phi or Gamma overflows this float type")
             }
-        })
+        })?;
+        d.prefilter = T::from_f64(prefilter_gain(
+            dt.to_f64_lossless(),
+            self.prefilter.to_f64_lossless(),
+        ));
+        Ok(d)
+    }
+}
+
+/// The prefilter's gain per period, `1 - exp(-dt / tau)` (`-expm1`, exact for
+/// small `dt / tau`); exactly 1 for `tau = 0` (no prefilter) or where the
+/// stage settles within one period in `f64`.
+pub(crate) fn prefilter_gain(dt: f64, tau: f64) -> f64 {
+    if tau > 0.0 {
+        -num_traits::Float::exp_m1(-dt / tau)
+    } else {
+        1.0
     }
 }

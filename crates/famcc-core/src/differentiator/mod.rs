@@ -57,6 +57,7 @@ pub use defaults::{
     auto_discretization, auto_discretization_at, auto_mu, paper_coefficients, EXACT_DT_PER_MU, PAPER_MU,
     SAMPLE_DELAY,
 };
+pub(crate) use high_gain::prefilter_gain;
 pub use high_gain::{Discretization, HighGain};
 pub use linalg::spectral_radius;
 pub use recursion::DiscreteHgd;

@@ -1,5 +1,6 @@
-//! The sampled differentiator [`DiscreteHgd`], `Zhat_{k+1} = Phi Zhat_k + Gamma e_k`:
-//! one step of it and its stability (the spectral radius of `Phi`).
+//! The sampled differentiator [`DiscreteHgd`], `Zhat_{k+1} = Phi Zhat_k + Gamma f_k`
+//! with `f_k` the sample `e_k` (or its low-pass prefiltered value): one step
+//! of it and its stability (the spectral radius of `Phi`).
 
 use super::spectral_radius;
 use crate::Real;
@@ -7,14 +8,21 @@ use crate::Real;
 /// The sampled differentiator `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` of
 /// eq. (34) for one sample period.
 ///
-/// `phi` is row-major (`phi[row][col]`), `gamma[i]` multiplies the held sample
-/// `e_k` of `z1`. Build it with [`HighGain::discretize`](super::HighGain::discretize).
+/// `phi` is row-major (`phi[row][col]`), `gamma[i]` multiplies the held input
+/// `f_k`: the sample `e_k` of `z1`, or with a prefilter
+/// ([`HighGain::with_prefilter`](super::HighGain::with_prefilter)) its
+/// low-pass value `f_k = f_(k-1) + prefilter (e_k - f_(k-1))`
+/// ([`DiscreteHgd::filter`]). Build it with
+/// [`HighGain::discretize`](super::HighGain::discretize).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DiscreteHgd<T, const N: usize> {
     /// State transition over one period, row-major.
     pub phi: [[T; N]; N],
     /// Input vector over one period.
     pub gamma: [T; N],
+    /// The prefilter's gain per period, `1 - exp(-dt / tau)` in `(0, 1]`;
+    /// exactly 1 without a prefilter (the paper's differentiator: `f_k = e_k`).
+    pub prefilter: T,
 }
 
 impl<T: Real, const N: usize> DiscreteHgd<T, N> {
@@ -23,7 +31,7 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
     ///
     /// ```
     /// use famcc_core::DiscreteHgd;
-    /// let d = DiscreteHgd { phi: [[0.5_f64, 0.25], [0.0, 0.25]], gamma: [0.5, 2.0] };
+    /// let d = DiscreteHgd { phi: [[0.5_f64, 0.25], [0.0, 0.25]], gamma: [0.5, 2.0], prefilter: 1.0 };
     /// assert_eq!(d.advance(&[1.0, 2.0], 4.0), [3.0, 8.5]);
     /// ```
     #[inline]
@@ -36,6 +44,28 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
                 .fold(*g * e, |acc, (p, z)| acc + *p * *z);
         }
         out
+    }
+
+    /// The differentiator's input for the sample `e` after the input `last`
+    /// of the previous sample: `e` itself without a prefilter (`prefilter ==
+    /// 1`, bit for bit), else the first-order low-pass
+    /// `last + prefilter (e - last)`, whose DC gain is exactly 1.
+    ///
+    /// ```
+    /// use famcc_core::DiscreteHgd;
+    /// let d = DiscreteHgd { phi: [[0.5_f64]], gamma: [0.5], prefilter: 0.25 };
+    /// assert_eq!(d.filter(2.0, 6.0), 3.0);
+    /// assert_eq!(d.filter(6.0, 6.0), 6.0);
+    /// let plain = DiscreteHgd { prefilter: 1.0, ..d };
+    /// assert_eq!(plain.filter(2.0, -0.0).to_bits(), (-0.0_f64).to_bits());
+    /// ```
+    #[inline(always)]
+    pub fn filter(&self, last: T, e: T) -> T {
+        if self.prefilter == T::one() {
+            e
+        } else {
+            low_pass(last, self.prefilter, e)
+        }
     }
 
     /// The spectral radius of `Phi` (computed in `f64` by [`spectral_radius`]):
@@ -61,4 +91,11 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
         }
         spectral_radius(&m)
     }
+}
+
+/// `last + gain (e - last)`, out of line: the step without a prefilter then
+/// pays a compare and a branch, not the arithmetic of a selected-away value.
+#[inline(never)]
+fn low_pass<T: Real>(last: T, gain: T, e: T) -> T {
+    last + gain * (e - last)
 }

@@ -174,45 +174,38 @@ fn requirements_are_validated_by_name() {
 }
 
 /// The noise finding's number against an independent computation: the
-/// steady covariance of the sampled differentiator driven by white noise on
-/// `e`, by plain iteration `P <- Phi P Phi' + Gamma Gamma'` (not the
-/// design's doubling), projected on the linear manifold
-/// `s = sum_k C(n-1, k) lambda^(n-1-k) z_(k+1)` of `h_i(s) = -lambda s`.
+/// steady variance of `s` under white noise on `e` as the sum of the squared
+/// impulse response of the controller's own recursion (prefilter, then
+/// `Zhat_{k+1} = Phi Zhat_k + Gamma f_k`, stepped with `DiscreteHgd::filter`
+/// and `advance`; not the design's Lyapunov doubling), projected on the
+/// linear manifold `s = sum_k C(n-1, k) lambda^(n-1-k) z_(k+1)` of
+/// `h_i(s) = -lambda s`. The design sets the prefilter `mu / 2` for noise.
 #[test]
-#[allow(clippy::needless_range_loop)] // matrix products read best indexed
 fn the_noise_ratio_is_the_manifolds_steady_noise_over_the_band() {
     fn check<const N: usize>() {
         let mut r = req(N);
         r.integral = Some(false);
         r.noise_std = 2e-4;
         let d = design(&r).unwrap();
+        assert_eq!(d.prefilter, 0.5 * d.mu);
         let mut a = [0.0; N];
         a.copy_from_slice(&d.a[..N]);
-        let hgd = HighGain::new(d.mu, a, d.discretization).discretize(r.dt).unwrap();
-        let mut p = [[0.0f64; N]; N];
-        for _ in 0..200_000 {
-            let mut next = [[0.0f64; N]; N];
-            for i in 0..N {
-                for j in 0..N {
-                    let mut acc = hgd.gamma[i] * hgd.gamma[j];
-                    for k in 0..N {
-                        for l in 0..N {
-                            acc += hgd.phi[i][k] * p[k][l] * hgd.phi[j][l];
-                        }
-                    }
-                    next[i][j] = acc;
-                }
-            }
-            p = next;
-        }
+        let hgd = HighGain::new(d.mu, a, d.discretization)
+            .with_prefilter(d.prefilter)
+            .discretize(r.dt)
+            .unwrap();
+        assert!(hgd.prefilter > 0.0 && hgd.prefilter < 1.0);
         let binom = |n: usize, k: usize| (0..k).fold(1.0, |b, i| b * (n - i) as f64 / (i + 1) as f64);
         let c: Vec<f64> = (0..N)
             .map(|k| binom(N - 1, k) * d.lambda.powi((N - 1 - k) as i32))
             .collect();
-        let var: f64 = (0..N)
-            .flat_map(|i| (0..N).map(move |j| (i, j)))
-            .map(|(i, j)| c[i] * c[j] * p[i][j])
-            .sum();
+        let (mut z, mut f, mut var) = ([0.0f64; N], 0.0f64, 0.0f64);
+        for k in 0..200_000 {
+            let s: f64 = c.iter().zip(z.iter()).map(|(c, z)| c * z).sum();
+            var += s * s;
+            f = hgd.filter(f, if k == 0 { 1.0 } else { 0.0 });
+            z = hgd.advance(&z, f);
+        }
         let want = r.noise_std * var.sqrt() / d.eps_s;
         let got = finding(d.checks(), Rule::Noise).value;
         assert!(
@@ -413,4 +406,51 @@ fn a_negligible_noise_leaves_the_noise_free_design() {
         r.noise_std = 1e-2;
         assert!(design(&r).unwrap().mu > clean.mu, "order {n}");
     }
+}
+
+/// The noise rule's prefilter: none without noise or above
+/// `PREFILTER_ORDER`, `PREFILTER_PER_MU mu` with noise up to it.
+#[test]
+fn the_noise_rule_adds_the_prefilter_up_to_order_3_only() {
+    use famcc_core::design::{PREFILTER_ORDER, PREFILTER_PER_MU};
+    for n in 1..=5 {
+        let mut r = req(n);
+        assert_eq!(design(&r).unwrap().prefilter, 0.0, "order {n} without noise");
+        r.noise_std = 1e-3;
+        r.max_error = Some(1.0);
+        let d = design(&r).unwrap();
+        let want = if n > 1 && n <= PREFILTER_ORDER {
+            PREFILTER_PER_MU * d.mu
+        } else {
+            0.0
+        };
+        assert_eq!(d.prefilter, want, "order {n}");
+    }
+}
+
+/// The noise rule keeps `NOISE_SIGMAS` standard deviations of the linearized
+/// law's input noise (`2 k_u sigma_s / eps_s`) within the headroom the hold
+/// input leaves on the nearer limit: the same range shifted so that the hold
+/// input sits near a limit (same `k_u`, same band) needs a slower
+/// differentiator.
+#[test]
+fn the_noise_rule_keeps_the_input_noise_within_the_holds_headroom() {
+    use famcc_core::design::NOISE_SIGMAS;
+    let run = |limits: (f64, f64)| {
+        let mut r = Requirements::new(3, 1e-3, limits, 0.05, 4.0, 20.0);
+        r.gain = Some(2.0);
+        r.noise_std = 1e-3;
+        let d = design(&r).unwrap();
+        let ratio = finding(d.checks(), Rule::Noise).value;
+        let headroom = (limits.1.min(-limits.0) - 20.0).max(0.05 * (limits.1 - limits.0));
+        let u_noise = NOISE_SIGMAS * 2.0 * d.k_u * ratio;
+        assert!(
+            u_noise <= headroom * (1.0 + 1e-12),
+            "{limits:?}: {u_noise} > {headroom}"
+        );
+        d
+    };
+    let (centred, shifted) = (run((-50.0, 50.0)), run((-25.0, 75.0)));
+    assert_eq!(centred.k_u, shifted.k_u);
+    assert!(shifted.mu > centred.mu, "{} vs {}", shifted.mu, centred.mu);
 }

@@ -21,6 +21,7 @@ mod no_alloc;
 mod no_flexible_clamp;
 mod options;
 mod options_proptest;
+mod prefilter;
 mod properties;
 mod rate_rules;
 mod recovery;
