@@ -453,4 +453,7 @@ fn the_noise_rule_keeps_the_input_noise_within_the_holds_headroom() {
     let (centred, shifted) = (run((-50.0, 50.0)), run((-25.0, 75.0)));
     assert_eq!(centred.k_u, shifted.k_u);
     assert!(shifted.mu > centred.mu, "{} vs {}", shifted.mu, centred.mu);
+    // The headroom never counts below 5 % of the range: a hold input 2 from
+    // its limit is given the same 5 as one 5 from it.
+    assert_eq!(run((-22.0, 78.0)).mu, shifted.mu);
 }
