@@ -904,6 +904,7 @@ class ReferenceController:
         e = float(e)
         if not math.isfinite(e):
             raise ValueError(f"e must be finite (got {e})")
+        f = self._input(e)
         if self.phi is None:
             if self.order != 1:
                 raise ValueError("output feedback at order >= 2 needs a differentiator")
@@ -914,21 +915,22 @@ class ReferenceController:
                 zhat = self._zhat
             else:
                 zhat = [e, *self.initial_derivatives]
-            nxt = self._advance(zhat, self._input(e))
+            nxt = self._advance(zhat, f)
         if self.limits is not None:
             zhat = [max(-lim, min(lim, z)) for z, lim in zip(zhat, self.limits)]
-        return self._finish(zhat, nxt, applied, [e, *self.initial_derivatives], e, self._input(e))
+        return self._finish(zhat, nxt, applied, [e, *self.initial_derivatives], e, f)
 
     def step_state(self, z: Sequence[float], applied: float | None = None) -> float:
         """One state-feedback step with the measured error vector ``z = (z1..zn)``."""
         z = [float(x) for x in z]
         if len(z) != self.order or not all(math.isfinite(x) for x in z):
             raise ValueError(f"z must be {self.order} finite floats")
+        f = self._input(z[0])
         if self.phi is None:
             nxt = z
         else:
-            nxt = self._advance(self._zhat if self._started else z, self._input(z[0]))
-        return self._finish(z, nxt, applied, z, z[0], self._input(z[0]))
+            nxt = self._advance(self._zhat if self._started else z, f)
+        return self._finish(z, nxt, applied, z, z[0], f)
 
     def _restart(self, seed: list, e: float, law_failed: bool) -> None:
         """The recovery rule: the estimate restarts from ``seed`` (the first
