@@ -28,7 +28,8 @@ T_START=$(date +%s)
 # Targets (f32, thumbv7em-none-eabihf).
 TARGET_INSN_O2=1500
 TARGET_INSN_O3=3000
-TARGET_TEXT=16384
+TARGET_TEXT=16384    # order 2, and step-only at both orders
+TARGET_TEXT_O3=24576 # order 3 (issue 16)
 
 FAILURES=()
 WARNINGS=()
@@ -98,7 +99,10 @@ T_BUILD=$(date +%s)
 
 # ---------------------------------------------------------------- C ABI tests and header
 phase "C ABI: Rust tests, header"
-if (cd "$ROOT/crates/famcc-ffi" && "$CARGO" test --lib) >"$LOG/ffi-test.log" 2>&1; then
+# scripts/test.sh has run these tests already (FAMCC_FFI_TESTED=1): not twice.
+if [ "${FAMCC_FFI_TESTED:-0}" = 1 ]; then
+    echo "famcc-ffi tests: run by scripts/test.sh"
+elif (cd "$ROOT/crates/famcc-ffi" && "$CARGO" test --lib) >"$LOG/ffi-test.log" 2>&1; then
     grep -E "^test result" "$LOG/ffi-test.log"
 else
     tail -30 "$LOG/ffi-test.log"
@@ -303,7 +307,7 @@ target() { # name, value, limit
 target "instructions/step, order 2" "${INSN[2]:-}" $TARGET_INSN_O2
 target "instructions/step, order 3" "${INSN[3]:-}" $TARGET_INSN_O3
 target "controller flash, order 2 (new + step), bytes" "${TEXT[2]:-}" $TARGET_TEXT
-target "controller flash, order 3 (new + step), bytes" "${TEXT[3]:-}" $TARGET_TEXT
+target "controller flash, order 3 (new + step), bytes" "${TEXT[3]:-}" $TARGET_TEXT_O3
 target "step-only flash, order 2, bytes" "${TEXT_STEP[2]:-}" $TARGET_TEXT
 target "step-only flash, order 3, bytes" "${TEXT_STEP[3]:-}" $TARGET_TEXT
 if ((${#ADVERSARIAL[@]})); then

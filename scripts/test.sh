@@ -39,7 +39,16 @@ else
 fi
 echo "python: $PY ($("$PY" -c 'import sys; print(sys.version.split()[0])'))"
 
+# Where the time goes: `mark NAME` closes a phase; the table is printed at the end.
+TIMES=()
+T_LAST=0
+mark() {
+    TIMES+=("$(printf '%5d s  %s' $((SECONDS - T_LAST)) "$1")")
+    T_LAST=$SECONDS
+}
+
 "$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs,cluster]'
+mark "venv, install (pip; the extension's release build)"
 # fmt, clippy and rustdoc over the three workspaces: the root (core, paper,
 # binding), the C ABI and the firmware keep workspaces of their own
 # (docs/design.md §9.1: their panic = "abort" profiles and features).
@@ -48,6 +57,7 @@ for manifest in Cargo.toml crates/famcc-ffi/Cargo.toml embedded/Cargo.toml; do
     cargo clippy --manifest-path "$manifest" --workspace --all-targets -- -D warnings
     RUSTDOCFLAGS="-D warnings" cargo doc --manifest-path "$manifest" --workspace --no-deps --quiet
 done
+mark "fmt, clippy, rustdoc (3 workspaces)"
 cargo test -p famcc-core -p famcc-paper
 # Every benchmark workload builds its controller and steps once (criterion's
 # test mode): a design the validation rules reject fails here, not in a bench run.
@@ -56,21 +66,25 @@ cargo test -q -p famcc-core --benches
 cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
+mark "Rust tests (core, paper, benches, no_std, C ABI)"
 # Mutation testing: a fixed, seeded slice of famcc-core's mutants (~11, ~5
 # minutes; docs/mutation.md). A mutant that survives and is not triaged in
 # .cargo/mutants-equivalent.txt fails here. `scripts/mutants.sh --full` runs all.
 bash scripts/mutants.sh
+mark "cargo-mutants slice"
 "$PY" -m ruff check python tests benches examples
 "$PY" -m ruff format --check python tests benches examples
 "$PY" -m mypy --strict python/famcc
 "$PY" -m pytest -q
 # The examples in the package's docstrings.
 "$PY" -m pytest -q --doctest-modules python/famcc
+mark "ruff, mypy, pytest, doctests"
 # Mutation testing of the Python package: a fixed, seeded slice of cosmic-ray's
 # mutants of the verdict and metric code (10, 2-4 minutes; docs/mutation.md,
 # "Python"), each against its module's tests. A mutant that survives and is not
 # triaged in .mutants-py-equivalent.txt fails here. `scripts/mutants-py.sh --full` runs all.
 bash scripts/mutants-py.sh
+mark "cosmic-ray slice"
 # The documentation site (mkdocs.yml): any warning, a broken link among them, fails.
 NO_MKDOCS_2_WARNING=1 "$PY" -m mkdocs build --strict --site-dir target/docs-site
 echo "mkdocs build --strict: OK (target/docs-site)"
@@ -78,6 +92,11 @@ echo "mkdocs build --strict: OK (target/docs-site)"
 "$("$PY" -c 'import sysconfig; print(sysconfig.get_path("scripts"))')/actionlint" -no-color
 echo "actionlint: OK ($(ls .github/workflows/*.yml | tr '\n' ' '))"
 bash -n scripts/build-wheels.sh scripts/test-wheel.sh
+mark "mkdocs, actionlint"
 # famcc-core in f32 on a Cortex-M4F under QEMU, and the C ABI (installs its
 # Debian packages with apt-get when missing).
-bash scripts/firmware-check.sh
+FAMCC_FFI_TESTED=1 bash scripts/firmware-check.sh
+mark "firmware check"
+echo "time per phase:"
+printf '  %s\n' "${TIMES[@]}"
+echo "  $SECONDS s in all"

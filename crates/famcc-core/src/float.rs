@@ -62,6 +62,16 @@ pub trait Real:
     /// 4)` (`2^256` in `f64`, `2^32` in `f32`; its inverse is the smallest),
     /// docs/design.md §3.9.
     fn scale_limit() -> Self;
+
+    /// `(sin(x), cos(x))` for `|x| <= pi/4` only (the sine transition's
+    /// range): in `f64` the library's `sin_cos`; in `f32` Taylor polynomials
+    /// of degree 9 and 10 (truncation below `2e-9`, within 2 ulp of the
+    /// correctly rounded values), so that a target with no use for a general
+    /// `sin` does not carry its argument reduction (~5 KB of flash).
+    fn sin_cos_octant(self) -> (Self, Self);
+
+    /// The sine of [`Real::sin_cos_octant`] alone (`|x| <= pi/4`).
+    fn sin_octant(self) -> Self;
 }
 
 impl Real for f64 {
@@ -88,6 +98,14 @@ impl Real for f64 {
     #[inline(always)]
     fn scale_limit() -> Self {
         1.157_920_892_373_162e77
+    }
+    #[inline]
+    fn sin_cos_octant(self) -> (Self, Self) {
+        num_traits::Float::sin_cos(self)
+    }
+    #[inline]
+    fn sin_octant(self) -> Self {
+        num_traits::Float::sin(self)
     }
 }
 
@@ -126,5 +144,20 @@ impl Real for f32 {
     #[inline(always)]
     fn scale_limit() -> Self {
         4_294_967_296.0
+    }
+    // Out of line, as the library's `sinf` was: the sine transition's arm
+    // stays a call.
+    #[inline(never)]
+    fn sin_cos_octant(self) -> (Self, Self) {
+        // 1/3!, 1/5!, ... and 1/2!, 1/4!, ... with alternating signs.
+        const S: [f32; 4] = [-1.0 / 6.0, 1.0 / 120.0, -1.0 / 5_040.0, 1.0 / 362_880.0];
+        const C: [f32; 5] = [-0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40_320.0, -1.0 / 3_628_800.0];
+        let x2 = self * self;
+        let horner = |c: &[f32]| c.iter().rev().fold(0.0, |acc, k| acc * x2 + k);
+        (self + self * x2 * horner(&S), 1.0 + x2 * horner(&C))
+    }
+    #[inline]
+    fn sin_octant(self) -> Self {
+        self.sin_cos_octant().0
     }
 }

@@ -116,7 +116,7 @@ impl Transition {
                 z * z * z * (z * (z * T::from_f64(6.0) - T::from_f64(15.0)) + T::from_f64(10.0))
             }
             Transition::Sine => {
-                let s = (T::FRAC_PI_2() * z).sin();
+                let s = (T::FRAC_PI_2() * z).sin_octant();
                 s * s
             }
         }
@@ -168,7 +168,7 @@ impl Transition {
                 z * z * z * (z * (z * T::from_f64(6.0) - T::from_f64(15.0)) + T::from_f64(10.0))
             }
             Transition::Sine => {
-                let (s, _) = (z * T::FRAC_PI_2()).sin_cos();
+                let (s, _) = (z * T::FRAC_PI_2()).sin_cos_octant();
                 s * s
             }
         }

@@ -129,11 +129,17 @@ fn fixed_time<T: Real>((alpha, p, beta, q): (f64, f64, f64, f64)) -> Feedback<T>
 
 /// Example 1: LaMC, `FiniteTime(k = 1, p = 0.5)`, `eps_x = 0.1`, `k_u = 5`.
 pub fn example1<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 2>, ConfigError> {
+    example1_builder(variant, dt).build()
+}
+
+/// [`example1`] before [`ConfigBuilder::build`] (e.g. for
+/// [`ConfigBuilder::build_discretized`] with a recursion precomputed on a host).
+pub fn example1_builder<T: Real>(variant: Variant, dt: T) -> ConfigBuilder<T, 2> {
     let law = Feedback::FiniteTime {
         k: lit(EX1_K),
         p: lit(EX1_P),
     };
-    build(
+    finish(
         Config::builder(
             dt,
             &[(law, None)],
@@ -147,6 +153,12 @@ pub fn example1<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 2>, Config
 /// Example 2: LoMC, the variable-exponent law with SSMD (`eps_s` = 0.15 in
 /// the paper, 0.225 in the authors' code), `eps_y = 0.15`, `k_u = 2`.
 pub fn example2<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 2>, ConfigError> {
+    example2_builder(variant, dt).build()
+}
+
+/// [`example2`] before [`ConfigBuilder::build`] (e.g. for
+/// [`ConfigBuilder::build_discretized`] with a recursion precomputed on a host).
+pub fn example2_builder<T: Real>(variant: Variant, dt: T) -> ConfigBuilder<T, 2> {
     let [k, r_b, r_1, r_t] = EX2_LAW.map(lit::<T>);
     let eps_s = match variant {
         Variant::Paper => 0.15,
@@ -156,7 +168,7 @@ pub fn example2<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 2>, Config
         Feedback::VariableExponent { k, r_b, r_1, r_t },
         Some(Skew::smooth(lit(eps_s), lit(0.1))),
     );
-    build(
+    finish(
         Config::builder(
             dt,
             &[stage],
@@ -171,6 +183,12 @@ pub fn example2<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 2>, Config
 /// Variant "paper": `eps_s1 = 0.2`, `eps_y = 5`; "code": `eps_s1 = 0.1`,
 /// `eps_y = 3`.
 pub fn example3<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 3>, ConfigError> {
+    example3_builder(variant, dt).build()
+}
+
+/// [`example3`] before [`ConfigBuilder::build`] (e.g. for
+/// [`ConfigBuilder::build_discretized`] with a recursion precomputed on a host).
+pub fn example3_builder<T: Real>(variant: Variant, dt: T) -> ConfigBuilder<T, 3> {
     let (eps_s1, eps_y) = match variant {
         Variant::Paper => (0.2, 5.0),
         Variant::Code => (0.1, 3.0),
@@ -186,7 +204,7 @@ pub fn example3<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 3>, Config
             Some(Skew::nonsingular(lit(eps_y), lit(0.2), lit(1.0))),
         ),
     ];
-    build(
+    finish(
         Config::builder(
             dt,
             &stages,
@@ -199,14 +217,10 @@ pub fn example3<T: Real>(variant: Variant, dt: T) -> Result<Config<T, 3>, Config
 
 /// What every example shares: the variant's latch, the paper's
 /// differentiator, the core's defaults for the rest.
-fn build<T: Real, const N: usize>(
-    design: ConfigBuilder<T, N>,
-    variant: Variant,
-) -> Result<Config<T, N>, ConfigError> {
+fn finish<T: Real, const N: usize>(design: ConfigBuilder<T, N>, variant: Variant) -> ConfigBuilder<T, N> {
     design
         .latch(variant.latch())
         .differentiator(Some(HighGain::paper()))
-        .build()
 }
 
 /// A design of a run-time-chosen example.

@@ -1,6 +1,9 @@
 //! The runs both builds make, in the same order and with the same output:
 //! the closed loops (with their checks) and the test vectors. The designs,
 //! plants, limits and settling bounds are the paper's (famcc-paper), in f32.
+//! The configurations are built from differentiator recursions precomputed
+//! on the build host ([`precomputed`], build.rs), so neither build runs the
+//! matrix exponential.
 
 use crate::closed_loop::{self, Scenario};
 use crate::out::Sink;
@@ -15,14 +18,26 @@ pub const STEPS: u32 = (HORIZON / SAMPLE_PERIOD + 0.5) as u32 + 1;
 /// famcc-core use 10).
 pub const SUBSTEPS: u32 = 4;
 
-/// Example 1 in the authors' variant (f32, 1 kHz).
-pub fn example1() -> Result<Controller<f32, 2>, ConfigError> {
-    designs::example1(Variant::Code, SAMPLE_PERIOD as f32).map(Controller::new)
+/// The designs' differentiator recursions, computed on the build host by
+/// the code of `ConfigBuilder::build` (build.rs).
+pub mod precomputed {
+    include!(concat!(env!("OUT_DIR"), "/precomputed.rs"));
 }
 
-/// Example 3 in the authors' variant (f32, 1 kHz).
+/// Example 1 in the authors' variant (f32, 1 kHz), from its precomputed
+/// recursion.
+pub fn example1() -> Result<Controller<f32, 2>, ConfigError> {
+    designs::example1_builder(Variant::Code, SAMPLE_PERIOD as f32)
+        .build_discretized(precomputed::EXAMPLE1)
+        .map(Controller::new)
+}
+
+/// Example 3 in the authors' variant (f32, 1 kHz), from its precomputed
+/// recursion.
 pub fn example3() -> Result<Controller<f32, 3>, ConfigError> {
-    designs::example3(Variant::Code, SAMPLE_PERIOD as f32).map(Controller::new)
+    designs::example3_builder(Variant::Code, SAMPLE_PERIOD as f32)
+        .build_discretized(precomputed::EXAMPLE3)
+        .map(Controller::new)
 }
 
 /// The run of `example` (authors' variant, 10 s at 1 kHz) with its

@@ -28,9 +28,33 @@ fn run() -> ExitCode {
     out.s("famcc-fw-host: famcc-core f32 on the host").nl();
     let mut fails = suite::loops(&mut out, &mut |_, _, _| {}, &mut |_, _, _| {});
     fails += suite::vectors(&mut out);
+    fails += precomputed(&mut out);
     out.s("result: ").u(u64::from(fails)).s(" failure(s)").nl();
     let _ = out.0.flush();
     ExitCode::from(fails.min(255) as u8)
+}
+
+/// The firmware's configurations (a recursion precomputed by build.rs, then
+/// `build_discretized`) against the configurations `build` makes on the
+/// host with its own discretization: they must be equal, recursion and all.
+fn precomputed(out: &mut Stdout) -> u32 {
+    use famcc_paper::designs::{self, Variant, SAMPLE_PERIOD};
+    let dt = SAMPLE_PERIOD as f32;
+    let same = [
+        suite::example1().ok().map(|c| *c.config()) == designs::example1(Variant::Code, dt).ok(),
+        suite::example3().ok().map(|c| *c.config()) == designs::example3(Variant::Code, dt).ok(),
+    ];
+    let fails = same.iter().filter(|s| !**s).count() as u32;
+    if fails == 0 {
+        out.s("precomputed: examples 1 and 3 equal the host's own build")
+            .nl();
+    } else {
+        out.s("FAIL precomputed: ")
+            .u(u64::from(fails))
+            .s(" configuration(s) differ from the host's build")
+            .nl();
+    }
+    fails
 }
 
 /// Distance in ulps between two f32 bit patterns (monotone integer mapping;

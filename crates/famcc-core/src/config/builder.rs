@@ -3,7 +3,7 @@
 
 use super::{check_estimate_limits, Config, DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use crate::error::{positive, scale, ConfigError};
-use crate::{Constraint, Feedback, Gamma, HighGain, Latch, Real, Skew, SkewedLaw, Transition};
+use crate::{Constraint, DiscreteHgd, Feedback, Gamma, HighGain, Latch, Real, Skew, SkewedLaw, Transition};
 
 /// The flexible-boundary margin a builder was given.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -220,8 +220,75 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         Ok(config)
     }
 
+    /// [`ConfigBuilder::build`] with the differentiator's recursion `hgd`
+    /// precomputed for `dt`, e.g. on a host by
+    /// [`HighGain::discretize_order`]`(dt, plant order)` (the plant order is
+    /// `N`, or `N - 1` with integral action): nothing is discretized here, so
+    /// a microcontroller that builds its configuration this way links
+    /// neither the `f64` matrix exponential nor soft-float `f64`.
+    ///
+    /// The differentiator must still be given ([`ConfigBuilder::differentiator`]):
+    /// it names the recursion in diagnostics and snapshots, and
+    /// [`crate::Controller::step_dt`] rediscretizes it for a one-off period.
+    /// Its values are checked as in `build`, but instead of the Hurwitz test
+    /// of its coefficients the recursion itself is checked, in `T`: every
+    /// entry finite, the prefilter gain in `(0, 1]`, the slots below the plant
+    /// order (the integral's) exactly zero, and the spectral radius of `Phi`
+    /// below 1. Whether `hgd` is this differentiator's discretization is the
+    /// caller's to ensure: build it with the same code on the host.
+    ///
+    /// ```
+    /// use famcc_core::{Config, Constraint, Feedback, HighGain};
+    /// let b = Config::<f32, 2>::builder(1e-3, &[(Feedback::Linear { k: 1.0 }, None)],
+    ///                                   Constraint::Lateral { eps: 0.1 }, 5.0)
+    ///     .differentiator(Some(HighGain::paper()));
+    /// // on the host:
+    /// let hgd = HighGain::<f32, 2>::paper().discretize(1e-3).unwrap();
+    /// // on the target, from the host's values:
+    /// assert_eq!(b.build_discretized(hgd), b.build());
+    /// let mut unstable = hgd;
+    /// unstable.phi[1][1] = 1.5;
+    /// assert_eq!(b.build_discretized(unstable).unwrap_err().parameter, "discretized");
+    /// ```
+    pub fn build_discretized(&self, hgd: DiscreteHgd<T, N>) -> Result<Config<T, N>, ConfigError> {
+        let (laws, rho_e, plant_order) = self.checked(false)?;
+        if self.differentiator.is_none() {
+            return Err(ConfigError::new(
+                "differentiator",
+                "must be given with a precomputed recursion (e.g. HighGain::paper())",
+            ));
+        }
+        hgd.check_precomputed(N - plant_order)?;
+        let config = self.assemble(laws, rho_e, Some(hgd));
+        crate::controller::probe(&config)?;
+        Ok(config)
+    }
+
     /// [`ConfigBuilder::build`] without the probe.
     pub(crate) fn build_unprobed(&self) -> Result<Config<T, N>, ConfigError> {
+        let (laws, rho_e, plant_order) = self.checked(true)?;
+        let hgd = match &self.differentiator {
+            Some(h) => Some(h.discretize_order(self.dt, plant_order)?),
+            None => None,
+        };
+        if hgd
+            .as_ref()
+            .is_some_and(|d| d.spectral_radius().partial_cmp(&1.0) != Some(core::cmp::Ordering::Less))
+        {
+            return Err(ConfigError::new(
+                "dt",
+                "gives an unstable discretized differentiator (spectral radius of Phi >= 1): lower dt, \
+                 raise mu or use discretization exact or tustin",
+            ));
+        }
+        Ok(self.assemble(laws, rho_e, hgd))
+    }
+
+    /// Every rule but the differentiator's discretization (with the Hurwitz
+    /// test of its coefficients when `hurwitz`): the validated stage laws,
+    /// `rho_e` and the plant order.
+    #[allow(clippy::type_complexity)]
+    fn checked(&self, hurwitz: bool) -> Result<([SkewedLaw<T>; N], Option<T>, usize), ConfigError> {
         if N == 0 {
             return Err(ConfigError::new("order", "must be >= 1"));
         }
@@ -270,7 +337,11 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         }
         let plant_order = N - usize::from(self.integral);
         if let Some(h) = &self.differentiator {
-            h.validate_order(plant_order)?;
+            if hurwitz {
+                h.validate_order(plant_order)?;
+            } else {
+                h.validate_values(plant_order)?;
+            }
         }
         if let Some(d) = &self.initial_derivatives {
             if d.iter().any(|v| !v.is_finite()) {
@@ -300,21 +371,17 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         if self.initial_output.is_some_and(|u| !u.is_finite()) {
             return Err(ConfigError::new("initial_output", "must be finite"));
         }
-        let hgd = match &self.differentiator {
-            Some(h) => Some(h.discretize_order(self.dt, plant_order)?),
-            None => None,
-        };
-        if hgd
-            .as_ref()
-            .is_some_and(|d| d.spectral_radius().partial_cmp(&1.0) != Some(core::cmp::Ordering::Less))
-        {
-            return Err(ConfigError::new(
-                "dt",
-                "gives an unstable discretized differentiator (spectral radius of Phi >= 1): lower dt, \
-                 raise mu or use discretization exact or tustin",
-            ));
-        }
-        Ok(Config {
+        Ok((laws, rho_e, plant_order))
+    }
+
+    /// The configuration of these checked values.
+    fn assemble(
+        &self,
+        laws: [SkewedLaw<T>; N],
+        rho_e: Option<T>,
+        hgd: Option<DiscreteHgd<T, N>>,
+    ) -> Config<T, N> {
+        Config {
             dt: self.dt,
             laws,
             constraint: self.constraint,
@@ -333,6 +400,6 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
             output_limits: self.output_limits,
             rate_limit: self.rate_limit,
             initial_output: self.initial_output,
-        })
+        }
     }
 }

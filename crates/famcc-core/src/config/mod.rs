@@ -254,6 +254,15 @@ impl<T: Real, const N: usize> Config<T, N> {
         h.0 & ((1 << 52) - 1)
     }
 
+    /// This configuration with zero initial derivatives (the probe's
+    /// diagnosis; every other value stays valid).
+    pub(crate) fn without_initial_derivatives(&self) -> Self {
+        Self {
+            initial_derivatives: None,
+            ..*self
+        }
+    }
+
     /// The differentiator of [`Config::differentiator`] discretized for a
     /// one-off period `dt` (order [`Config::plant_order`]).
     pub fn discretize_at(&self, dt: T) -> Option<Result<DiscreteHgd<T, N>, ConfigError>> {

@@ -1,7 +1,9 @@
 //! The step itself: the control from the current estimate (or the measured
 //! state), then the estimate and the clock advanced, committed as one
-//! transaction (docs/design.md §3.2-3.8). The first step (latch, bumpless
-//! start) is compiled apart from the steady one.
+//! transaction (docs/design.md §3.2-3.8). The steady step of a
+//! configuration with nothing to limit or integrate is compiled apart, inline;
+//! every other step (the first one, with its latch and bumpless start, and
+//! the steady one with limits) is one out-of-line function.
 
 use super::output::{Limited, Limits};
 use super::recover::{in_range, width_in_range, Cause};
@@ -21,38 +23,46 @@ impl<T: Real, const N: usize> Controller<T, N> {
         one_off_dt: Option<T>,
         applied: Option<T>,
     ) -> Result<T, StepError> {
-        if !self.state.started {
-            return self.first_control_then_advance(measured, one_off_dt, applied);
-        }
         // Without output limits, integral action or a told input, the limits,
         // the integral separation and the health count are known to do
-        // nothing: that step is compiled apart, so they cost it nothing.
+        // nothing: that steady step is compiled apart, so they cost it nothing.
+        if !self.state.started {
+            return self.control_then_advance_general(measured, one_off_dt, applied);
+        }
         if applied.is_none() && self.config.unlimited() {
-            self.control_then_advance_from::<false, true>(measured, one_off_dt, None)
+            self.control_then_advance_from::<true>(false, measured, one_off_dt, None)
         } else {
-            self.control_then_advance_from::<false, false>(measured, one_off_dt, applied)
+            self.control_then_advance_general(measured, one_off_dt, applied)
         }
     }
 
-    /// The first step (latch, bumpless start): once per run, kept out of the
-    /// steady step so that its branches cost the steady step nothing.
+    /// Every other step: the first one (latch, bumpless start) and the
+    /// steady one with limits, integral action or a told input. Out of line
+    /// and one copy for both, so that they cost the unlimited steady step
+    /// nothing and a program (a microcontroller's flash) holds the general
+    /// step once (the validation probe uses it too). Cold, as the first
+    /// step alone was: measured, it keeps the unlimited steady step 2-8
+    /// Ir cheaper (benches/README.md).
     #[cold]
     #[inline(never)]
-    fn first_control_then_advance(
+    pub(super) fn control_then_advance_general(
         &mut self,
         measured: Measured<T, N>,
         one_off_dt: Option<T>,
         applied: Option<T>,
     ) -> Result<T, StepError> {
-        self.control_then_advance_from::<true, false>(measured, one_off_dt, applied)
+        let first = !self.state.started;
+        self.control_then_advance_from::<false>(first, measured, one_off_dt, applied)
     }
 
-    /// [`Self::control_then_advance`] for a first step (`FIRST`) or a later
+    /// [`Self::control_then_advance`] for a first step (`first`) or a later
     /// one, and for a configuration with nothing to limit or integrate and
-    /// no told input (`UNLIMITED`, see [`crate::Config::unlimited`]).
+    /// no told input (`UNLIMITED`, see [`crate::Config::unlimited`]; never
+    /// a first step).
     #[inline(always)]
-    fn control_then_advance_from<const FIRST: bool, const UNLIMITED: bool>(
+    fn control_then_advance_from<const UNLIMITED: bool>(
         &mut self,
+        first: bool,
         measured: Measured<T, N>,
         one_off_dt: Option<T>,
         applied: Option<T>,
@@ -71,7 +81,6 @@ impl<T: Real, const N: usize> Controller<T, N> {
             Some(dt) => dt,
             None => c.dt(),
         };
-        let first = FIRST;
         let settle_time = c.settle_time();
         // This step's discretization (a one-off period is rediscretized).
         let one_off;
@@ -170,7 +179,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let v = -c.k_u() * c.gamma().eval(eval.xi);
         let env = &self.state.envelopes;
         let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
-        let (mut next, filtered) = self.next_estimate::<FIRST>(plan, e);
+        let (mut next, filtered) = self.next_estimate(first, plan, e);
         let updated = !carried || in_range(&next);
         if !(updated & latched & v.is_finite() & eval.xi.is_finite()) {
             if let Some(envelopes) = unlatched {
@@ -254,12 +263,12 @@ impl<T: Real, const N: usize> Controller<T, N> {
     /// The estimate the next step uses, and the differentiator's input of
     /// this sample (the prefiltered `e`, or `e`).
     #[inline(always)]
-    fn next_estimate<const FIRST: bool>(&self, plan: Next<'_, T, N>, e: T) -> ([T; N], T) {
+    fn next_estimate(&self, first: bool, plan: Next<'_, T, N>, e: T) -> ([T; N], T) {
         match plan {
             Next::Known(next) => next,
             Next::Update(d) => {
                 // Only the first step comes before anything started.
-                let last = if FIRST { e } else { self.state.filtered };
+                let last = if first { e } else { self.state.filtered };
                 let f = d.filter(last, e);
                 (d.advance(&self.current_estimate(e), f), f)
             }

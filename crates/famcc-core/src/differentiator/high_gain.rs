@@ -123,6 +123,26 @@ impl<T: Real, const N: usize> HighGain<T, N> {
     /// assert!(h.validate_order(4).is_err());
     /// ```
     pub fn validate_order(&self, order: usize) -> Result<(), ConfigError> {
+        self.validate_values(order)?;
+        let used = self.a.get(..order).unwrap_or(&[]);
+        let mut a = [0.0_f64; N];
+        for (d, s) in a.iter_mut().zip(used.iter()) {
+            *d = s.to_f64_lossless();
+        }
+        if routh_hurwitz::<N>(a.get(..order).unwrap_or(&[])) {
+            Ok(())
+        } else {
+            Err(ConfigError::new(
+                "a",
+                "must make s^N + a1 s^(N-1) + ... + aN Hurwitz; this polynomial is not Hurwitz",
+            ))
+        }
+    }
+
+    /// [`HighGain::validate_order`] without the Hurwitz test, in `T` alone:
+    /// for a recursion precomputed on a host, whose stability
+    /// [`crate::ConfigBuilder::build_discretized`] checks on `Phi` itself.
+    pub(crate) fn validate_values(&self, order: usize) -> Result<(), ConfigError> {
         positive(self.mu, "mu")?;
         if !(self.prefilter.is_finite() && self.prefilter >= T::zero()) {
             return Err(ConfigError::new(
@@ -140,18 +160,7 @@ impl<T: Real, const N: usize> HighGain<T, N> {
         if !used.iter().all(|&ai| ai.is_finite() && ai > T::zero()) {
             return Err(ConfigError::new("a", "must all be finite and > 0"));
         }
-        let mut a = [0.0_f64; N];
-        for (d, s) in a.iter_mut().zip(used.iter()) {
-            *d = s.to_f64_lossless();
-        }
-        if routh_hurwitz::<N>(a.get(..order).unwrap_or(&[])) {
-            Ok(())
-        } else {
-            Err(ConfigError::new(
-                "a",
-                "must make s^N + a1 s^(N-1) + ... + aN Hurwitz; this polynomial is not Hurwitz",
-            ))
-        }
+        Ok(())
     }
 
     /// Validates, checks the sample period `dt` (seconds; finite and `> 0`,

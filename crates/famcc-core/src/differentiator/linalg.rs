@@ -1,7 +1,11 @@
 //! Allocation-free `f64` linear algebra for the differentiator's
 //! discretization (no indexing: every access is checked): small dense
-//! matrices, LU with partial pivoting, the Routh-Hurwitz test and the
-//! spectral radius (without an eigen-solver).
+//! matrices, LU with partial pivoting, the Routh-Hurwitz test, and the
+//! spectral radius (without an eigen-solver; in any [`Real`], so that a
+//! recursion precomputed on a host is checked on a microcontroller in its
+//! own float type).
+
+use crate::Real;
 
 /// A dense `N x N` matrix, row-major.
 pub(super) type Mat<const N: usize> = [[f64; N]; N];
@@ -16,12 +20,12 @@ pub(super) fn identity<const N: usize>() -> Mat<N> {
     m
 }
 
-pub(super) fn mat_mul<const N: usize>(x: &Mat<N>, y: &Mat<N>) -> Mat<N> {
-    let mut out = [[0.0; N]; N];
+pub(super) fn mat_mul<R: Real, const N: usize>(x: &[[R; N]; N], y: &[[R; N]; N]) -> [[R; N]; N] {
+    let mut out = [[R::zero(); N]; N];
     for (orow, xrow) in out.iter_mut().zip(x.iter()) {
         for (xik, yrow) in xrow.iter().zip(y.iter()) {
             for (o, ykj) in orow.iter_mut().zip(yrow.iter()) {
-                *o += xik * ykj;
+                *o = *o + *xik * *ykj;
             }
         }
     }
@@ -169,40 +173,46 @@ const SQUARINGS: u32 = 40;
 /// ~`1e-10` inside the unit circle. (A defective eigenvalue of multiplicity
 /// `k` of the rounded matrix itself moves by ~`rounding^(1/k)`.) Returns 0
 /// for a nilpotent (or zero) matrix and infinity if an entry is not finite.
+/// Computed in the matrix's float type: in `f32` a radius within ~`1e-7` of 1
+/// reads as 1 (a precomputed recursion is checked this way by
+/// [`crate::ConfigBuilder::build_discretized`]).
 ///
 /// ```
 /// use famcc_core::differentiator::spectral_radius;
 /// // eigenvalues 0.5 and -0.9 (upper triangular): radius 0.9
-/// let r = spectral_radius(&[[0.5, 7.0], [0.0, -0.9]]);
+/// let r = spectral_radius(&[[0.5_f64, 7.0], [0.0, -0.9]]);
 /// assert!((r - 0.9).abs() < 1e-9);
+/// // the same in f32
+/// assert!((spectral_radius(&[[0.5_f32, 7.0], [0.0, -0.9]]) - 0.9).abs() < 1e-6);
 /// // a Jordan block at -1 (Euler, order 2, dt = mu): marginal, reads >= 1
-/// assert!(spectral_radius(&[[-3.0, 1.0], [-4.0, 1.0]]) >= 1.0);
-/// assert_eq!(spectral_radius(&[[0.0, 1.0], [0.0, 0.0]]), 0.0);
+/// assert!(spectral_radius(&[[-3.0_f64, 1.0], [-4.0, 1.0]]) >= 1.0);
+/// assert_eq!(spectral_radius(&[[0.0_f64, 1.0], [0.0, 0.0]]), 0.0);
 /// ```
-pub fn spectral_radius<const N: usize>(m: &[[f64; N]; N]) -> f64 {
-    let norm = |x: &Mat<N>| {
+pub fn spectral_radius<R: Real, const N: usize>(m: &[[R; N]; N]) -> R {
+    let norm = |x: &[[R; N]; N]| {
         x.iter()
-            .map(|row| row.iter().map(|v| v.abs()).sum::<f64>())
-            .fold(0.0_f64, f64::max)
+            .map(|row| row.iter().fold(R::zero(), |acc, v| acc + v.abs()))
+            .fold(R::zero(), R::max)
     };
+    let two = R::from_f64(2.0);
     let mut a = *m;
     // a holds M^(2^k) / exp(log_norm)
-    let mut log_norm = 0.0_f64;
+    let mut log_norm = R::zero();
     for k in 0..=SQUARINGS {
         let nm = norm(&a);
         if !nm.is_finite() {
-            return f64::INFINITY;
+            return R::infinity();
         }
-        if nm == 0.0 {
-            return 0.0;
+        if nm == R::zero() {
+            return R::zero();
         }
-        a.iter_mut().flatten().for_each(|v| *v /= nm);
-        log_norm += num_traits::Float::ln(nm);
+        a.iter_mut().flatten().for_each(|v| *v = *v / nm);
+        log_norm = log_norm + nm.ln();
         if k == SQUARINGS {
             break;
         }
         a = mat_mul(&a, &a);
-        log_norm *= 2.0;
+        log_norm = log_norm * two;
     }
-    num_traits::Float::exp(log_norm / num_traits::Float::powi(2.0_f64, SQUARINGS as i32))
+    (log_norm / two.powi(SQUARINGS as i32)).exp()
 }

@@ -3,7 +3,7 @@
 //! of it and its stability (the spectral radius of `Phi`).
 
 use super::spectral_radius;
-use crate::Real;
+use crate::{ConfigError, Real};
 
 /// The sampled differentiator `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` of
 /// eq. (34) for one sample period.
@@ -90,6 +90,45 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
             }
         }
         spectral_radius(&m)
+    }
+
+    /// The checks of [`crate::ConfigBuilder::build_discretized`] on a recursion
+    /// precomputed elsewhere, whose leading `offset` slots (the integral's)
+    /// must be unused.
+    pub(crate) fn check_precomputed(&self, offset: usize) -> Result<(), ConfigError> {
+        let entries = || self.phi.iter().flatten().chain(self.gamma.iter());
+        if !entries().all(|v| v.is_finite()) {
+            return Err(ConfigError::new("discretized", "must have finite Phi and Gamma"));
+        }
+        if !(self.prefilter > T::zero() && self.prefilter <= T::one()) {
+            return Err(ConfigError::new(
+                "discretized",
+                "must have a prefilter gain in (0, 1] (1 without a prefilter)",
+            ));
+        }
+        let mut unused = self
+            .gamma
+            .iter()
+            .take(offset)
+            .chain(self.phi.iter().enumerate().flat_map(|(i, row)| {
+                row.iter()
+                    .enumerate()
+                    .filter(move |(j, _)| i.min(*j) < offset)
+                    .map(|(_, v)| v)
+            }));
+        if unused.any(|v| *v != T::zero()) {
+            return Err(ConfigError::new(
+                "discretized",
+                "must leave the integral's slot 0 of Phi and Gamma zero (discretize_order at the plant order)",
+            ));
+        }
+        if spectral_radius(&self.phi).partial_cmp(&T::one()) != Some(core::cmp::Ordering::Less) {
+            return Err(ConfigError::new(
+                "discretized",
+                "is unstable (spectral radius of Phi >= 1): precompute it with HighGain::discretize_order",
+            ));
+        }
+        Ok(())
     }
 }
 

@@ -229,7 +229,19 @@ impl<T: Real, const K: usize> Jet<T, K> {
     /// `(sin(x), cos(x))`.
     #[inline]
     pub fn sin_cos(&self) -> (Self, Self) {
-        let (s0, c0) = self.value().sin_cos();
+        self.sin_cos_from(self.value().sin_cos())
+    }
+
+    /// [`Jet::sin_cos`] for `|x| <= pi/4` only ([`Real::sin_cos_octant`]).
+    #[inline]
+    pub fn sin_cos_octant(&self) -> (Self, Self) {
+        self.sin_cos_from(self.value().sin_cos_octant())
+    }
+
+    /// The jets of `sin(x)` and `cos(x)` from their values `(s0, c0)`, by
+    /// the recurrences of `s' = c x'` and `c' = -s x'`.
+    #[inline]
+    fn sin_cos_from(&self, (s0, c0): (T, T)) -> (Self, Self) {
         let mut s = [T::zero(); K];
         let mut c = [T::zero(); K];
         set(&mut s, 0, s0);

@@ -496,3 +496,29 @@ fn a_told_input_equal_to_the_last_output_changes_nothing_in_the_papers_loops() {
         }
     }
 }
+
+#[test]
+fn an_output_out_of_the_integrals_search_range_gives_the_nearest_one_searched() {
+    // A first-stage gain of 1e-30 needs |I_0| ~ 1e30 to move s_1 by eps, far
+    // beyond the search (eps 2^-20 doubled 96 times): no sign change is
+    // found, and the I_0 searched whose output is nearest u0 is taken, so
+    // the output moves (slightly) towards u0, on the side of u0.
+    let laws = [
+        (Feedback::Linear { k: 1e-30 }, None),
+        (Feedback::Linear { k: 2.0 }, None),
+    ];
+    let b = Config::<f64, 3>::builder(1e-3, &laws, Constraint::Longitudinal { eps: 2.0 }, 4.0)
+        .differentiator(Some(HighGain::new(0.01, [4.0, 4.0, 0.0], Discretization::Exact)))
+        .integral(true);
+    let first = |u0: Option<f64>| {
+        Controller::new(b.initial_output(u0).build().unwrap())
+            .step(0.05)
+            .unwrap()
+    };
+    let (plain, up, down) = (first(None), first(Some(1e3)), first(Some(-1e3)));
+    assert!(down < plain && plain < up, "{down} < {plain} < {up}");
+    for u0 in [-1.0, 0.5, 3.0] {
+        let v = first(Some(u0));
+        assert!(down <= v && v <= up, "{u0}: {v} within {down} .. {up}");
+    }
+}
