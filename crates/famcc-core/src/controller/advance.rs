@@ -23,12 +23,12 @@ impl<T: Real, const N: usize> Controller<T, N> {
         one_off_dt: Option<T>,
         applied: Option<T>,
     ) -> Result<T, StepError> {
-        // Without output limits, integral action or a told input, the limits,
-        // the integral separation and the health count are known to do
-        // nothing: that steady step is compiled apart, so they cost it nothing.
         if !self.state.started {
             return self.control_then_advance_general(measured, one_off_dt, applied);
         }
+        // Without output limits, integral action or a told input, the limits,
+        // the integral separation and the health count are known to do
+        // nothing: that steady step is compiled apart, so they cost it nothing.
         if applied.is_none() && self.config.unlimited() {
             self.control_then_advance_from::<true>(false, measured, one_off_dt, None)
         } else {
