@@ -129,6 +129,26 @@ fn sampled_loop_radius_matches_the_first_order_closed_form() {
 }
 
 #[test]
+fn the_sampled_loop_radius_is_exactly_zero_for_a_deadbeat_loop_and_an_error_when_it_overflows() {
+    // Order 1 (the closed form above): a gain that makes 1 - G K dt exactly
+    // 0 has radius 0 (M = 0 has no norm to scale by), not NaN.
+    let mut r = req(1);
+    r.integral = Some(false);
+    r.gain = Some(1.0);
+    r.dt = 0.5;
+    let mut d = design(&r).unwrap();
+    d.k_u = d.eps_s; // K = 2 k_u / eps_s = 2, G K dt = 1
+    check(&mut d, &r).unwrap();
+    let c = finding(d.checks(), Rule::SampledLoop);
+    assert_eq!((c.value, c.level), (0.0, Level::Ok));
+    // A gain whose loop matrix overflows: an error naming dt, not a NaN
+    // radius that no level would flag.
+    d.k_u = f64::MAX;
+    let e = check(&mut d, &r).unwrap_err();
+    assert_eq!(e.parameter, "dt", "{e:?}");
+}
+
+#[test]
 fn noise_slows_the_differentiator_until_the_rule_holds() {
     let quiet = design(&req(2)).unwrap();
     let mut r = req(2);

@@ -149,6 +149,21 @@ fn bumpless_start_from_a_given_output() {
 }
 
 #[test]
+fn an_unreachable_first_output_with_the_flexible_boundary_stops_at_the_nominal_bounds() {
+    // LoMC, eps = 2, rho_e = 0.5: the bounds stay nominal while |xi| <= 1 -
+    // rho_e / eps = 0.75. e = -1 gives s_0 = -2 and the usual latch xi_0 =
+    // -0.5; the latch may narrow to the final width (xi_0 = -1), but the
+    // bumpless start stops at the nominal limit: v_0 = -k_u Gamma(-0.75) =
+    // 8 atanh(0.75), not the 8 atanh(0.5) of a limit 1 - rho_e.
+    let b = builder::<f64, 2>(4.0).rho_e(Some(0.5)).initial_output(Some(1e3));
+    let mut c = Controller::new(b.build().unwrap());
+    let v = c.step(-1.0).unwrap();
+    let xi = c.diagnostics().xi_nominal;
+    assert!((xi + 0.75).abs() < 1e-5, "xi {xi}");
+    assert!((v - 8.0 * 0.75_f64.atanh()).abs() < 1e-4, "v {v}");
+}
+
+#[test]
 fn bumpless_start_in_f32() {
     let b = builder::<f32, 3>(4.0).integral(true).initial_output(Some(1.25));
     let v = Controller::new(b.build().unwrap()).step(0.05).unwrap();
