@@ -197,3 +197,29 @@ fn a_clock_far_out_takes_a_new_period_like_any_other() {
     assert_eq!(c.snapshot().t_base, 1e300);
     assert_eq!(c.snapshot().k, 1);
 }
+
+/// A run that changes its period keeps the law's time: 50 samples at 1 ms,
+/// 25 at 2 ms, then the 1 ms period again, meet the run that stayed at 1 ms
+/// at its sample at 0.1 s with the same envelopes (the law time of a new run
+/// starts from the run's base, `min(base, T_s)`, not from 0).
+#[test]
+fn a_changed_period_keeps_the_law_time() {
+    let (mut a, mut b) = (controller::<f64>(), controller::<f64>());
+    for _ in 0..=100 {
+        a.step(0.1).unwrap();
+    }
+    for _ in 0..50 {
+        b.step(0.1).unwrap();
+    }
+    for _ in 0..25 {
+        b.step_dt(0.1, 2e-3, None).unwrap();
+    }
+    b.step(0.1).unwrap();
+    let (da, db) = (a.diagnostics(), b.diagnostics());
+    assert!((da.t - 0.1).abs() < 1e-12 && (db.t - 0.1).abs() < 1e-12, "{} {}", da.t, db.t);
+    // The envelopes still shrink at 0.1 s (T_s = 1 s), so a law time off by
+    // a sample or more would show.
+    assert!(da.nominal_bounds.0 > 0.1 * 1.5, "{:?}", da.nominal_bounds);
+    let rel = (da.nominal_bounds.0 - db.nominal_bounds.0).abs() / da.nominal_bounds.0;
+    assert!(rel < 1e-9, "{:?} vs {:?}", da.nominal_bounds, db.nominal_bounds);
+}

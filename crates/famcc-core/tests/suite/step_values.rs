@@ -941,6 +941,14 @@ fn jet_powf_rescales_an_underflowing_power_through_logs() {
     let y = Jet::<f64, 3>::from_derivatives([1e-200, 1.0, 0.0]).powf(2.5);
     assert_eq!(y.value(), 0.0);
     assert_close(y.derivative(1), 2.5e-300, 1e-12, "d/dt");
+    // x0 = 1e-130, x' = 1e-30, x'' = 2e70 (x0^2.5 = 1e-325 underflows; the
+    // ratios x'/x0 and x''/x0 stay finite): the second Taylor coefficient
+    // p x0^(p-1) x''/2 + p (p-1)/2 x0^(p-2) x'^2 = 2.5e-125 + 1.875e-125,
+    // where the x'' term carries the weight 2p of the recurrence.
+    let y = Jet::<f64, 3>::from_derivatives([1e-130, 1e-30, 2e70]).powf(2.5);
+    assert_eq!(y.value(), 0.0);
+    assert_close(y.derivative(1), 2.5 * 1e-195 * 1e-30, 1e-12, "d/dt");
+    assert_close(y.derivative(2), 2.0 * 4.375e-125, 1e-12, "d2/dt2");
 }
 
 #[test]
