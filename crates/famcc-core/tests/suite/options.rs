@@ -537,3 +537,23 @@ fn an_output_out_of_the_integrals_search_range_gives_the_nearest_one_searched() 
         assert!(down <= v && v <= up, "{u0}: {v} within {down} .. {up}");
     }
 }
+
+#[test]
+fn step_state_applied_is_step_state_with_the_input_told() {
+    // Untold, it is `step_state` bit for bit; told the previous output, the
+    // saturation gap it reports is 0 (the actuator applied it exactly).
+    let cfg = builder::<f64, 2>(4.0).build().unwrap();
+    let (mut a, mut b) = (Controller::new(cfg), Controller::new(cfg));
+    let mut last = None;
+    for k in 0..200 {
+        let t = k as f64 * DT;
+        let z = [0.3 * (2.0 * t).cos(), -0.6 * (2.0 * t).sin()];
+        let va = a.step_state(z).unwrap();
+        let vb = b.step_state_applied(z, if k < 100 { None } else { last }).unwrap();
+        assert!(va != 0.0, "sample {k}: a zero output would not tell the steps apart");
+        assert_eq!(va.to_bits(), vb.to_bits(), "sample {k}");
+        let gap = b.diagnostics().saturation_gap;
+        assert_eq!(gap, (k >= 100).then_some(0.0), "sample {k}");
+        last = Some(vb);
+    }
+}
