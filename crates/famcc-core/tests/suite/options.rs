@@ -319,6 +319,11 @@ fn the_papers_designs_have_no_lint_findings() {
                 Design::Order3(c) => c.lint().iter().map(|f| f.to_string()).collect(),
             };
             assert!(found.is_empty(), "{ex:?} {variant:?}: {found:?}");
+            let empty = match design::<f64>(ex, variant, DT).unwrap() {
+                Design::Order2(c) => c.lint().is_empty(),
+                Design::Order3(c) => c.lint().is_empty(),
+            };
+            assert!(empty, "{ex:?} {variant:?}: Findings::is_empty");
         }
     }
 }
@@ -341,6 +346,14 @@ fn lint_names_the_parameter_rule_and_suggestion() {
     let f = cfg.lint();
     let lints: Vec<Lint> = f.iter().map(|f| f.lint).collect();
     assert_eq!(lints, [Lint::CoarseSampling, Lint::WideMargin, Lint::Peaking]);
+    assert!(!f.is_empty() && f.len() == 3);
+    // The coarse sampling's suggestion: a period of mu / 10 (value = dt / mu).
+    let coarse = f.get(Lint::CoarseSampling).unwrap();
+    let mu = 2e-2 / coarse.value;
+    let famcc_core::config::Suggestion::Value(dt) = coarse.suggestion else {
+        panic!("{coarse:?}")
+    };
+    assert!((dt - mu / 10.0).abs() < 1e-12 * mu, "{dt} vs mu {mu}");
     for finding in f.iter() {
         let text = finding.to_string();
         assert!(
