@@ -311,6 +311,8 @@ mod tests {
     #[test]
     fn the_half_width_is_the_hypotenuse_even_where_the_squares_overflow() {
         assert_eq!(half_width(3.0_f64, 4.0), 5.0);
+        // The wider x_U too (x^2 - y^2 would be finite there, and wrong).
+        assert_eq!(half_width(4.0_f64, 3.0), 5.0);
         // 3e200 and 4e200: the squares overflow, the scaled form does not.
         let d = half_width(3e200_f64, 4e200);
         assert!((d / 5e200 - 1.0).abs() < 1e-15, "{d}");
