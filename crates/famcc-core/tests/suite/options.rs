@@ -570,3 +570,28 @@ fn step_state_applied_is_step_state_with_the_input_told() {
         last = Some(vb);
     }
 }
+
+#[test]
+fn the_integrals_search_stops_at_half_the_estimate_range() {
+    // f32 (estimate range 2^64): with k_1 = k_2 = 1e-9 the integral enters
+    // s_0 as 1e-18 I_0, and eps = 100 gives xi_0 = s_0 / 200. The first
+    // output -k_u Gamma(0.125) needs s_0 = 25, I_0 = 2.5e19: beyond the
+    // search, which stops at half the range (2^63 = 9.2e18). The nearest
+    // searched I_0 is taken, within the range, and its output lies between
+    // the plain start's and u0.
+    let laws = [
+        (Feedback::Linear { k: 1e-9_f32 }, None),
+        (Feedback::Linear { k: 1e-9 }, None),
+    ];
+    let b = Config::<f32, 3>::builder(1e-3, &laws, Constraint::Longitudinal { eps: 100.0 }, 4.0)
+        .differentiator(Some(HighGain::new(0.01, [4.0, 4.0, 0.0], Discretization::Exact)))
+        .integral(true);
+    let u0 = -4.0 * 2.0 * 0.125_f32.atanh();
+    let plain = Controller::new(b.build().unwrap()).step(0.05).unwrap();
+    let mut c = Controller::new(b.initial_output(Some(u0)).build().unwrap());
+    let v = c.step(0.05).unwrap();
+    let i0 = c.snapshot().zhat[0];
+    assert!(i0.abs() <= 2.0_f32.powi(63), "I_0 {i0}");
+    assert!(i0.abs() >= 2.0_f32.powi(62), "I_0 {i0}: the search went as far as it may");
+    assert!(u0 < v && v < plain, "{u0} < {v} < {plain}");
+}
