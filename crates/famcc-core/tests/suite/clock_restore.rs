@@ -216,7 +216,12 @@ fn a_changed_period_keeps_the_law_time() {
     }
     b.step(0.1).unwrap();
     let (da, db) = (a.diagnostics(), b.diagnostics());
-    assert!((da.t - 0.1).abs() < 1e-12 && (db.t - 0.1).abs() < 1e-12, "{} {}", da.t, db.t);
+    assert!(
+        (da.t - 0.1).abs() < 1e-12 && (db.t - 0.1).abs() < 1e-12,
+        "{} {}",
+        da.t,
+        db.t
+    );
     // The envelopes still shrink at 0.1 s (T_s = 1 s), so a law time off by
     // a sample or more would show.
     assert!(da.nominal_bounds.0 > 0.1 * 1.5, "{:?}", da.nominal_bounds);

@@ -562,8 +562,13 @@ fn step_state_applied_is_step_state_with_the_input_told() {
         let t = k as f64 * DT;
         let z = [0.3 * (2.0 * t).cos(), -0.6 * (2.0 * t).sin()];
         let va = a.step_state(z).unwrap();
-        let vb = b.step_state_applied(z, if k < 100 { None } else { last }).unwrap();
-        assert!(va != 0.0, "sample {k}: a zero output would not tell the steps apart");
+        let vb = b
+            .step_state_applied(z, if k < 100 { None } else { last })
+            .unwrap();
+        assert!(
+            va != 0.0,
+            "sample {k}: a zero output would not tell the steps apart"
+        );
         assert_eq!(va.to_bits(), vb.to_bits(), "sample {k}");
         let gap = b.diagnostics().saturation_gap;
         assert_eq!(gap, (k >= 100).then_some(0.0), "sample {k}");
@@ -592,6 +597,9 @@ fn the_integrals_search_stops_at_half_the_estimate_range() {
     let v = c.step(0.05).unwrap();
     let i0 = c.snapshot().zhat[0];
     assert!(i0.abs() <= 2.0_f32.powi(63), "I_0 {i0}");
-    assert!(i0.abs() >= 2.0_f32.powi(62), "I_0 {i0}: the search went as far as it may");
+    assert!(
+        i0.abs() >= 2.0_f32.powi(62),
+        "I_0 {i0}: the search went as far as it may"
+    );
     assert!(u0 < v && v < plain, "{u0} < {v} < {plain}");
 }
