@@ -5,7 +5,7 @@
 # scratch copy of the package under target/mutants-py/<mode>/tree.
 #
 #   scripts/mutants-py.sh             the seeded slice that ./scripts/test.sh runs:
-#                                     MUTANTS_PY_COUNT (10) mutants drawn with the seed
+#                                     MUTANTS_PY_COUNT (5) mutants drawn with the seed
 #                                     MUTANTS_PY_SEED (11) from all the targets' mutants
 #   scripts/mutants-py.sh --full      every mutant of the targets (~1,760; hours)
 #   scripts/mutants-py.sh --target python/famcc/verdicts.py   one module (repeatable;

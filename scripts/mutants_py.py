@@ -8,7 +8,7 @@ mutated, even when a run is killed.
 
     mutants_py.py [--slice] [--full] [--list] [--target PATH]
 
---slice (the default): MUTANTS_PY_COUNT (default 10) mutants drawn with the
+--slice (the default): MUTANTS_PY_COUNT (default 5) mutants drawn with the
 seed MUTANTS_PY_SEED (default 11) from all the targets' mutants; --full: all of
 them; --target PATH (repeatable): only those modules'. --list prints the
 mutants and runs none; MUTANTS_PY_OUT names the report directory.
@@ -354,7 +354,7 @@ def main() -> int:
     if unknown or not targets:
         sys.exit(f"mutants-py: not a target: {unknown} ({', '.join(t.path for t in TARGETS)})")
     seed = int(os.environ.get("MUTANTS_PY_SEED", "11"))
-    count = int(os.environ.get("MUTANTS_PY_COUNT", "10"))
+    count = int(os.environ.get("MUTANTS_PY_COUNT", "5"))
     mode = "full" if a.full else "slice"
     out = ROOT / "target" / "mutants-py" / os.environ.get("MUTANTS_PY_OUT", mode)
     tree = out / "tree"

@@ -82,7 +82,7 @@ mark "cargo-mutants slice"
 "$PY" -m pytest -q --doctest-modules python/famcc
 mark "ruff, mypy, pytest, doctests"
 # Mutation testing of the Python package: a fixed, seeded slice of cosmic-ray's
-# mutants of the verdict and metric code (10, 2-4 minutes; docs/mutation.md,
+# mutants of the verdict and metric code (5, 1-2 minutes; docs/mutation.md,
 # "Python"), each against its module's tests. A mutant that survives and is not
 # triaged in .mutants-py-equivalent.txt fails here. `scripts/mutants-py.sh --full` runs all.
 bash scripts/mutants-py.sh
