@@ -202,12 +202,6 @@ def run(bug: Bug) -> tuple[bool, list[str], str]:
                 so = built
             shutil.copy2(so, TREE / "python" / "famcc" / "_core.abi3.so")
             py_env = dict(env, PYTHONPATH=str(TREE / "python"), MPLBACKEND="Agg")
-            rc = sh(
-                [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", *bug.pytests],
-                TREE,
-                log,
-                py_env,
-            )
             # The package under test must be the scratch copy's.
             probe = subprocess.run(
                 [sys.executable, "-c", "import famcc; print(famcc.__file__)"],
@@ -218,7 +212,13 @@ def run(bug: Bug) -> tuple[bool, list[str], str]:
                 check=False,
             ).stdout.strip()
             if not probe.startswith(str(TREE)):
-                return False, [], f"pytest imported famcc from {probe}, not the scratch copy"
+                return False, [], f"famcc imports from {probe}, not the scratch copy"
+            rc = sh(
+                [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", *bug.pytests],
+                TREE,
+                log,
+                py_env,
+            )
         found = failed_tests(log)
         if rc != 0 and not found:
             notes.append(f"{what}: exit {rc} without a failing test (see {log})")
