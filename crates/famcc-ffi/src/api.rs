@@ -6,6 +6,7 @@
 use core::mem::{align_of, size_of};
 
 use crate::lint::lint;
+use crate::reports::*;
 use crate::storage::{diagnostics, fits, init, magic, reset, step};
 use crate::types::*;
 

@@ -83,6 +83,7 @@ pub(crate) fn render() -> String {
          #![allow(clippy::missing_safety_doc)]\n\n\
          use core::mem::{align_of, size_of};\n\n\
          use crate::lint::lint;\n\
+         use crate::reports::*;\n\
          use crate::storage::{diagnostics, fits, init, magic, reset, step};\n\
          use crate::types::*;\n",
     );

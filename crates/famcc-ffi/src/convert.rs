@@ -4,6 +4,7 @@
 use core::ffi::c_char;
 use core::ptr;
 
+use crate::reports::*;
 use crate::types::*;
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use famcc_core::{

@@ -19,7 +19,8 @@
 //!   with `panic = "abort"`, and famcc-core never panics.
 //!
 //! The crate is split by concern: [`types`] (the C-facing types, which
-//! cbindgen writes to `include/famcc.h`; see `cbindgen.toml`), `convert`
+//! cbindgen writes to `include/famcc.h`; see `cbindgen.toml`), [`reports`]
+//! (what the functions report back: diagnostics, findings, errors), `convert`
 //! (C configuration and diagnostics to and from famcc-core's, with its
 //! defaults), `storage` (the tagged slots and checked access), `api` (the
 //! storage types and C functions of every order and float type, generated
@@ -34,6 +35,7 @@ mod api;
 mod api_gen;
 mod convert;
 mod lint;
+pub mod reports;
 mod storage;
 pub mod types;
 
@@ -41,6 +43,7 @@ use core::ffi::c_char;
 use core::ptr;
 
 pub use api::*;
+pub use reports::*;
 pub use types::*;
 // ---------------------------------------------------------------------------
 // The C functions of every controller type are generated in `api.rs`
@@ -136,6 +139,8 @@ mod tests_options;
 #[cfg(test)]
 mod tests_orders;
 
+#[cfg(test)]
+mod tests_variant_build;
 #[cfg(test)]
 mod tests_variant_cases;
 

@@ -5,8 +5,9 @@ use core::ffi::c_char;
 use core::fmt::{self, Write};
 use core::ptr;
 
+use crate::reports::{FamccFinding, FAMCC_MAX_FINDINGS};
 use crate::storage::slot_config;
-use crate::types::{FamccFinding, FamccStatus, FAMCC_MAX_FINDINGS};
+use crate::types::FamccStatus;
 use famcc_core::Real;
 
 // The header's capacity is the core's number of lints.

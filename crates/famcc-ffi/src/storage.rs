@@ -5,6 +5,7 @@ use core::mem::{align_of, size_of};
 use core::ptr;
 
 use crate::convert::{diag_to_c, report, status_of, to_config};
+use crate::reports::*;
 use crate::types::*;
 use famcc_core::{Controller, Real};
 

@@ -8,6 +8,7 @@
 
 extern crate std;
 
+use super::tests_variant_build::*;
 use super::tests_variant_cases::*;
 use super::*;
 use core::mem::MaybeUninit;
