@@ -38,8 +38,8 @@ fn main() {
     ) {
         (Ok(c1), Ok(c3)) => match (c1.discretized(), c3.discretized()) {
             (Some(d1), Some(d3)) => {
-                constant(&mut out, "EXAMPLE1", "Example 1 (f32, 1 kHz)", d1);
-                constant(&mut out, "EXAMPLE3", "Example 3 (f32, 1 kHz)", d3);
+                constant(&mut out, "EXAMPLE1", "Example 1 (f32, 1 kHz)", &d1);
+                constant(&mut out, "EXAMPLE3", "Example 3 (f32, 1 kHz)", &d3);
             }
             _ => panic!("the examples have no differentiator"),
         },

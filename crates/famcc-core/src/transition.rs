@@ -84,6 +84,13 @@ impl Transition {
     /// `S(z) + S(1 - z) = 1` hold to rounding.
     #[inline]
     pub fn double_ended<T: Real>(self, z: T) -> T {
+        self.double_ended_inline(z)
+    }
+
+    /// [`Transition::double_ended`], always inlined: for the skew's hot
+    /// call, where the call's overhead exceeds the transition's.
+    #[inline(always)]
+    pub(crate) fn double_ended_inline<T: Real>(self, z: T) -> T {
         if z <= T::zero() {
             return T::zero();
         }

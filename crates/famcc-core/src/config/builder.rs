@@ -393,7 +393,7 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
             transition: self.transition,
             latch: self.latch,
             differentiator: self.differentiator,
-            hgd,
+            hgd: hgd.map(Into::into),
             initial_derivatives: self.initial_derivatives,
             estimate_limits: self.estimate_limits,
             integral: self.integral,

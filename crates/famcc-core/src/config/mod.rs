@@ -32,7 +32,7 @@ mod lint;
 pub use builder::ConfigBuilder;
 pub use lint::{Finding, Findings, Lint, Suggestion, LINT_COUNT};
 
-use crate::differentiator::DiscreteHgd;
+use crate::differentiator::{DiscreteHgd, Recursion};
 use crate::error::ConfigError;
 use crate::{Constraint, Gamma, HighGain, Latch, Real, SkewedLaw, Transition};
 
@@ -107,8 +107,8 @@ pub struct Config<T, const N: usize> {
     transition: Transition,
     latch: Latch,
     differentiator: Option<HighGain<T, N>>,
-    /// The differentiator discretized for `dt`.
-    hgd: Option<DiscreteHgd<T, N>>,
+    /// The differentiator discretized for `dt`, stored by columns.
+    hgd: Option<Recursion<T, N>>,
     initial_derivatives: Option<[T; N]>,
     estimate_limits: Option<[T; N]>,
     integral: bool,
@@ -181,7 +181,13 @@ impl<T: Real, const N: usize> Config<T, N> {
     }
 
     /// The differentiator discretized for [`Config::dt`].
-    pub fn discretized(&self) -> Option<&DiscreteHgd<T, N>> {
+    pub fn discretized(&self) -> Option<DiscreteHgd<T, N>> {
+        self.hgd.as_ref().map(Recursion::hgd)
+    }
+
+    /// [`Config::discretized`] as the step runs it.
+    #[inline(always)]
+    pub(crate) fn recursion(&self) -> Option<&Recursion<T, N>> {
         self.hgd.as_ref()
     }
 
@@ -269,6 +275,11 @@ impl<T: Real, const N: usize> Config<T, N> {
         self.differentiator
             .as_ref()
             .map(|h| h.discretize_order(dt, self.plant_order()))
+    }
+
+    /// [`Config::discretize_at`] as the step runs it.
+    pub(crate) fn recursion_at(&self, dt: T) -> Option<Result<Recursion<T, N>, ConfigError>> {
+        self.discretize_at(dt).map(|d| d.map(|d| Recursion::new(&d)))
     }
 }
 

@@ -8,8 +8,9 @@
 use super::output::{Limited, Limits};
 use super::recover::{in_range, width_in_range, Cause};
 use super::{recover, Controller, Measured};
+use crate::differentiator::{self, Recursion};
 use crate::error::StepError;
-use crate::{differentiator, manifold, DiscreteHgd, Real};
+use crate::{manifold, Real};
 
 impl<T: Real, const N: usize> Controller<T, N> {
     /// Every step: computes the control from the current estimate (or the
@@ -84,12 +85,12 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let settle_time = c.settle_time();
         // This step's discretization (a one-off period is rediscretized).
         let one_off;
-        let hgd = match one_off_dt.and_then(|dt| c.discretize_at(dt)) {
+        let hgd = match one_off_dt.and_then(|dt| c.recursion_at(dt)) {
             Some(d) => {
                 one_off = d.map_err(|_| StepError::InvalidDt)?;
                 Some(&one_off)
             }
-            None => c.discretized(),
+            None => c.recursion(),
         };
         // The measured sample, the vector the law uses, and the estimate the
         // next step will use (all in the law's coordinates). The
@@ -120,7 +121,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 } else {
                     (z, e)
                 };
-                let next = match c.discretized() {
+                let next = match c.recursion() {
                     Some(d) => {
                         let f = d.filter(last, e);
                         (d.advance(&zhat, f), f)
@@ -231,18 +232,17 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let factor = eval.expansion;
         let expanded = factor > T::one();
         let st = &mut self.state;
-        // Field by field: the manifold values and the time are never stored
-        // (`diagnostics()` computes them), so they are not written either.
+        // Field by field: the manifold values, the flexible bounds and the
+        // time are never stored (`diagnostics()` computes them), so they are
+        // not written either.
         let d = &mut st.diag;
         d.saturation_gap = applied.map(|a| d.v - a);
         d.xi = eval.xi;
         d.xi_nominal = eval.xi_nominal;
-        // `min(T::MAX)` without its NaN handling (a NaN product gives MAX either way).
-        let capped = |w: T| if w < T::max_value() { w } else { T::max_value() };
-        d.bounds = (capped(factor * x_u), capped(factor * y_u));
+        // The flexible bounds and `expanded` follow from these two
+        // (`diagnostics()` computes them).
         d.nominal_bounds = (x_u, y_u);
         d.z_hat = z;
-        d.expanded = expanded;
         d.expansion = factor;
         d.clamp_count = d.clamp_count.saturating_add(u64::from(eval.clamped));
         d.v = limited.u;
@@ -304,5 +304,5 @@ impl<T: Real, const N: usize> Controller<T, N> {
 #[derive(Clone, Copy)]
 enum Next<'a, T, const N: usize> {
     Known(([T; N], T)),
-    Update(&'a DiscreteHgd<T, N>),
+    Update(&'a Recursion<T, N>),
 }

@@ -95,7 +95,7 @@ impl<T: Real, const N: usize> State<T, N> {
         &mut self,
         c: &Config<T, N>,
         measured: &Measured<T, N>,
-        hgd: Option<&differentiator::DiscreteHgd<T, N>>,
+        hgd: Option<&differentiator::Recursion<T, N>>,
         clock_next: Clock<T>,
         cause: Cause,
     ) -> StepError {
@@ -151,10 +151,17 @@ impl<T: Real, const N: usize> Controller<T, N> {
 
     /// What the last step did. The manifold values (`s`, `stages`,
     /// `s_prev`, `ds_prev`) are evaluated here from the estimate the step
-    /// used, so `step()` does not pay for values only a reader needs.
+    /// used, and the flexible bounds from the nominal ones and the
+    /// expansion factor, so `step()` does not pay for values only a reader
+    /// needs.
     pub fn diagnostics(&self) -> Diagnostics<T, N> {
         let mut d = self.state.diag;
         d.t = self.state.sampled.time();
+        // `min(T::MAX)` without its NaN handling (a NaN product gives MAX either way).
+        let capped = |w: T| if w < T::max_value() { w } else { T::max_value() };
+        let (x_u, y_u) = d.nominal_bounds;
+        d.bounds = (capped(d.expansion * x_u), capped(d.expansion * y_u));
+        d.expanded = d.expansion > T::one();
         if self.state.started {
             let m = manifold::evaluate(&d.z_hat, self.config.laws());
             d.s = m.s();

@@ -88,7 +88,7 @@ pub(crate) fn probe<T: Real, const N: usize>(c: &Config<T, N>) -> Result<(), Con
             "is so large that k_u Gamma(xi) overflows (the paper uses k_u between 2 and 30)",
         ));
     }
-    if c.discretized().is_some() && runs(c, false) {
+    if c.recursion().is_some() && runs(c, false) {
         return Err(ConfigError::new(
             "mu",
             "(with dt) gives differentiator gains so large that the first steps overflow for \
@@ -105,7 +105,7 @@ pub(crate) fn probe<T: Real, const N: usize>(c: &Config<T, N>) -> Result<(), Con
 /// True when the probe's steps all succeed, stepping the output error when
 /// `output` and the configuration allows it, the measured vector otherwise.
 fn runs<T: Real, const N: usize>(c: &Config<T, N>, output: bool) -> bool {
-    let by_error = output && (c.discretized().is_some() || !differentiator::needed_at(c.plant_order()));
+    let by_error = output && (c.recursion().is_some() || !differentiator::needed_at(c.plant_order()));
     probe_errors().all(|e| {
         let e = T::from_f64(e);
         let z = initial_estimate(c, e);

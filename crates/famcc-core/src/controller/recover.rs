@@ -21,7 +21,8 @@
 
 use super::probe::PROBE_LIMIT;
 use super::Measured;
-use crate::{Config, DiscreteHgd, Real};
+use crate::differentiator::Recursion;
+use crate::{Config, Real};
 
 /// The number of moderate samples (`|e| <= 1e3`, docs/design.md §3.9)
 /// after which a controller returns `Ok` again, whatever came before: the
@@ -61,7 +62,7 @@ pub(super) enum Cause {
 pub(super) fn restarted<T: Real, const N: usize>(
     c: &Config<T, N>,
     measured: &Measured<T, N>,
-    hgd: Option<&DiscreteHgd<T, N>>,
+    hgd: Option<&Recursion<T, N>>,
     cause: Cause,
 ) -> ([T; N], T) {
     let zero = Measured::Error(T::zero());

@@ -202,7 +202,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
         )?;
         // The differentiator's estimate is kept in range (recover.rs);
         // without one only the integral is carried, the rest is measured.
-        let carried = if c.discretized().is_some() {
+        let carried = if c.recursion().is_some() {
             N
         } else {
             c.estimate_offset()

@@ -61,6 +61,7 @@ pub(crate) use high_gain::prefilter_gain;
 pub use high_gain::{Discretization, HighGain};
 pub use linalg::spectral_radius;
 pub use recursion::DiscreteHgd;
+pub(crate) use recursion::Recursion;
 
 /// True when output feedback at `order` needs a differentiator: at order 1
 /// the measured error is the whole error vector `Z = (e)` (docs/design.md

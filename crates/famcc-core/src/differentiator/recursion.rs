@@ -36,14 +36,7 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
     /// ```
     #[inline]
     pub fn advance(&self, zhat: &[T; N], e: T) -> [T; N] {
-        let mut out = [T::zero(); N];
-        for ((o, row), g) in out.iter_mut().zip(self.phi.iter()).zip(self.gamma.iter()) {
-            *o = row
-                .iter()
-                .zip(zhat.iter())
-                .fold(*g * e, |acc, (p, z)| acc + *p * *z);
-        }
-        out
+        Recursion::new(self).advance(zhat, e)
     }
 
     /// The differentiator's input for the sample `e` after the input `last`
@@ -61,11 +54,7 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
     /// ```
     #[inline(always)]
     pub fn filter(&self, last: T, e: T) -> T {
-        if self.prefilter == T::one() {
-            e
-        } else {
-            low_pass(last, self.prefilter, e)
-        }
+        filter(self.prefilter, last, e)
     }
 
     /// The spectral radius of `Phi` (computed in `f64` by [`spectral_radius`]):
@@ -129,6 +118,89 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
             ));
         }
         Ok(())
+    }
+}
+
+/// The recursion as the step runs it: [`DiscreteHgd`] with `Phi` stored by
+/// columns, so that `Phi Zhat` is a sum of columns scaled by the entries of
+/// `Zhat` and vectorizes across rows without transposing `Phi` at every
+/// sample. Each entry of the result takes the same operations in the same
+/// order as the row-major dot product (`Gamma_i e + Phi_i0 z_0 + ...`), so
+/// the result is bit-identical.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Recursion<T, const N: usize> {
+    /// `cols[j][i] = phi[i][j]`.
+    cols: [[T; N]; N],
+    gamma: [T; N],
+    prefilter: T,
+}
+
+impl<T: Real, const N: usize> Recursion<T, N> {
+    /// `d` stored by columns.
+    pub(crate) fn new(d: &DiscreteHgd<T, N>) -> Self {
+        Self {
+            cols: transpose(&d.phi),
+            gamma: d.gamma,
+            prefilter: d.prefilter,
+        }
+    }
+
+    /// The recursion by rows again (exact).
+    pub(crate) fn hgd(&self) -> DiscreteHgd<T, N> {
+        DiscreteHgd {
+            phi: transpose(&self.cols),
+            gamma: self.gamma,
+            prefilter: self.prefilter,
+        }
+    }
+
+    /// [`DiscreteHgd::advance`].
+    #[inline(always)]
+    pub(crate) fn advance(&self, zhat: &[T; N], e: T) -> [T; N] {
+        let mut out = self.gamma;
+        out.iter_mut().for_each(|o| *o = *o * e);
+        for (col, z) in self.cols.iter().zip(zhat.iter()) {
+            for (o, p) in out.iter_mut().zip(col.iter()) {
+                *o = *o + *p * *z;
+            }
+        }
+        out
+    }
+
+    /// [`DiscreteHgd::filter`].
+    #[inline(always)]
+    pub(crate) fn filter(&self, last: T, e: T) -> T {
+        filter(self.prefilter, last, e)
+    }
+}
+
+impl<T: Real, const N: usize> From<DiscreteHgd<T, N>> for Recursion<T, N> {
+    fn from(d: DiscreteHgd<T, N>) -> Self {
+        Self::new(&d)
+    }
+}
+
+/// `m` transposed (exact).
+fn transpose<T: Real, const N: usize>(m: &[[T; N]; N]) -> [[T; N]; N] {
+    let mut t = [[T::zero(); N]; N];
+    for (i, row) in m.iter().enumerate() {
+        for (col, v) in t.iter_mut().zip(row.iter()) {
+            if let Some(c) = col.get_mut(i) {
+                *c = *v;
+            }
+        }
+    }
+    t
+}
+
+/// `e` without a prefilter (`prefilter == 1`, bit for bit), else the
+/// low-pass `last + prefilter (e - last)`.
+#[inline(always)]
+fn filter<T: Real>(prefilter: T, last: T, e: T) -> T {
+    if prefilter == T::one() {
+        e
+    } else {
+        low_pass(last, prefilter, e)
     }
 }
 
