@@ -1039,6 +1039,34 @@ typedef struct FamccError {
 } FamccError;
 
 /**
+ * A differentiator's recursion `Zhat_{k+1} = Phi Zhat_k + Gamma f_k` for one
+ * sample period (famcc-core's `DiscreteHgd`): computed on a host by
+ * `*_discretize` and passed to `*_init_discretized` on a target, which then
+ * runs no matrix exponential (and links none).
+ */
+typedef struct FamccDiscretized_f32 {
+  /**
+   * `Phi`, row-major: entry `(i, j)` is `phi[i][j]`; the first `order`
+   * rows and columns are used.
+   */
+  float phi[FAMCC_MAX_ORDER][FAMCC_MAX_ORDER];
+  /**
+   * `Gamma`; the first `order` entries are used.
+   */
+  float gamma[FAMCC_MAX_ORDER];
+  /**
+   * The prefilter's gain per period, in `(0, 1]`; exactly 1 without a
+   * prefilter.
+   */
+  float prefilter;
+} FamccDiscretized_f32;
+
+/**
+ * `float` precomputed recursion.
+ */
+typedef struct FamccDiscretized_f32 FamccDiscretizedF32;
+
+/**
  * What the last step did (mirrors `famcc_core::Diagnostics`; arrays hold
  * `order` used entries).
  */
@@ -1167,6 +1195,34 @@ typedef struct FamccFinding {
 typedef struct FamccO1F64 {
   uint64_t _opaque[FAMCC_O1_F64_WORDS];
 } FamccO1F64;
+
+/**
+ * A differentiator's recursion `Zhat_{k+1} = Phi Zhat_k + Gamma f_k` for one
+ * sample period (famcc-core's `DiscreteHgd`): computed on a host by
+ * `*_discretize` and passed to `*_init_discretized` on a target, which then
+ * runs no matrix exponential (and links none).
+ */
+typedef struct FamccDiscretized_f64 {
+  /**
+   * `Phi`, row-major: entry `(i, j)` is `phi[i][j]`; the first `order`
+   * rows and columns are used.
+   */
+  double phi[FAMCC_MAX_ORDER][FAMCC_MAX_ORDER];
+  /**
+   * `Gamma`; the first `order` entries are used.
+   */
+  double gamma[FAMCC_MAX_ORDER];
+  /**
+   * The prefilter's gain per period, in `(0, 1]`; exactly 1 without a
+   * prefilter.
+   */
+  double prefilter;
+} FamccDiscretized_f64;
+
+/**
+ * `double` precomputed recursion.
+ */
+typedef struct FamccDiscretized_f64 FamccDiscretizedF64;
 
 /**
  * What the last step did (mirrors `famcc_core::Diagnostics`; arrays hold
@@ -1395,6 +1451,30 @@ FamccStatus famcc_o1_f32_init_sized(struct FamccO1F32 *storage,
                                     struct FamccError *error);
 
 /**
+ * `famcc_o1_f32_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o1_f32_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o1_f32_init_discretized(struct FamccO1F32 *storage,
+                                          const FamccConfigF32 *config,
+                                          const FamccDiscretizedF32 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o1_f32_init`)
+ * for `famcc_o1_f32_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o1_f32_discretize(const FamccConfigF32 *config,
+                                    FamccDiscretizedF32 *out,
+                                    struct FamccError *error);
+
+/**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
  * the control `v` to hold until the next sample. On error `*v` is not
  * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
@@ -1459,6 +1539,30 @@ FamccStatus famcc_o1_f64_init(struct FamccO1F64 *storage,
 FamccStatus famcc_o1_f64_init_sized(struct FamccO1F64 *storage,
                                     size_t storage_size,
                                     const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * `famcc_o1_f64_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o1_f64_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o1_f64_init_discretized(struct FamccO1F64 *storage,
+                                          const FamccConfigF64 *config,
+                                          const FamccDiscretizedF64 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o1_f64_init`)
+ * for `famcc_o1_f64_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o1_f64_discretize(const FamccConfigF64 *config,
+                                    FamccDiscretizedF64 *out,
                                     struct FamccError *error);
 
 /**
@@ -1529,6 +1633,30 @@ FamccStatus famcc_o2_f32_init_sized(struct FamccO2F32 *storage,
                                     struct FamccError *error);
 
 /**
+ * `famcc_o2_f32_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o2_f32_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o2_f32_init_discretized(struct FamccO2F32 *storage,
+                                          const FamccConfigF32 *config,
+                                          const FamccDiscretizedF32 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o2_f32_init`)
+ * for `famcc_o2_f32_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o2_f32_discretize(const FamccConfigF32 *config,
+                                    FamccDiscretizedF32 *out,
+                                    struct FamccError *error);
+
+/**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
  * the control `v` to hold until the next sample. On error `*v` is not
  * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
@@ -1593,6 +1721,30 @@ FamccStatus famcc_o2_f64_init(struct FamccO2F64 *storage,
 FamccStatus famcc_o2_f64_init_sized(struct FamccO2F64 *storage,
                                     size_t storage_size,
                                     const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * `famcc_o2_f64_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o2_f64_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o2_f64_init_discretized(struct FamccO2F64 *storage,
+                                          const FamccConfigF64 *config,
+                                          const FamccDiscretizedF64 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o2_f64_init`)
+ * for `famcc_o2_f64_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o2_f64_discretize(const FamccConfigF64 *config,
+                                    FamccDiscretizedF64 *out,
                                     struct FamccError *error);
 
 /**
@@ -1663,6 +1815,30 @@ FamccStatus famcc_o3_f32_init_sized(struct FamccO3F32 *storage,
                                     struct FamccError *error);
 
 /**
+ * `famcc_o3_f32_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o3_f32_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o3_f32_init_discretized(struct FamccO3F32 *storage,
+                                          const FamccConfigF32 *config,
+                                          const FamccDiscretizedF32 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o3_f32_init`)
+ * for `famcc_o3_f32_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o3_f32_discretize(const FamccConfigF32 *config,
+                                    FamccDiscretizedF32 *out,
+                                    struct FamccError *error);
+
+/**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
  * the control `v` to hold until the next sample. On error `*v` is not
  * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
@@ -1727,6 +1903,30 @@ FamccStatus famcc_o3_f64_init(struct FamccO3F64 *storage,
 FamccStatus famcc_o3_f64_init_sized(struct FamccO3F64 *storage,
                                     size_t storage_size,
                                     const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * `famcc_o3_f64_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o3_f64_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o3_f64_init_discretized(struct FamccO3F64 *storage,
+                                          const FamccConfigF64 *config,
+                                          const FamccDiscretizedF64 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o3_f64_init`)
+ * for `famcc_o3_f64_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o3_f64_discretize(const FamccConfigF64 *config,
+                                    FamccDiscretizedF64 *out,
                                     struct FamccError *error);
 
 /**
@@ -1797,6 +1997,30 @@ FamccStatus famcc_o4_f32_init_sized(struct FamccO4F32 *storage,
                                     struct FamccError *error);
 
 /**
+ * `famcc_o4_f32_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o4_f32_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o4_f32_init_discretized(struct FamccO4F32 *storage,
+                                          const FamccConfigF32 *config,
+                                          const FamccDiscretizedF32 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o4_f32_init`)
+ * for `famcc_o4_f32_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o4_f32_discretize(const FamccConfigF32 *config,
+                                    FamccDiscretizedF32 *out,
+                                    struct FamccError *error);
+
+/**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
  * the control `v` to hold until the next sample. On error `*v` is not
  * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
@@ -1861,6 +2085,30 @@ FamccStatus famcc_o4_f64_init(struct FamccO4F64 *storage,
 FamccStatus famcc_o4_f64_init_sized(struct FamccO4F64 *storage,
                                     size_t storage_size,
                                     const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * `famcc_o4_f64_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o4_f64_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o4_f64_init_discretized(struct FamccO4F64 *storage,
+                                          const FamccConfigF64 *config,
+                                          const FamccDiscretizedF64 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o4_f64_init`)
+ * for `famcc_o4_f64_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o4_f64_discretize(const FamccConfigF64 *config,
+                                    FamccDiscretizedF64 *out,
                                     struct FamccError *error);
 
 /**
@@ -1931,6 +2179,30 @@ FamccStatus famcc_o5_f32_init_sized(struct FamccO5F32 *storage,
                                     struct FamccError *error);
 
 /**
+ * `famcc_o5_f32_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o5_f32_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o5_f32_init_discretized(struct FamccO5F32 *storage,
+                                          const FamccConfigF32 *config,
+                                          const FamccDiscretizedF32 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o5_f32_init`)
+ * for `famcc_o5_f32_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o5_f32_discretize(const FamccConfigF32 *config,
+                                    FamccDiscretizedF32 *out,
+                                    struct FamccError *error);
+
+/**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
  * the control `v` to hold until the next sample. On error `*v` is not
  * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
@@ -1995,6 +2267,30 @@ FamccStatus famcc_o5_f64_init(struct FamccO5F64 *storage,
 FamccStatus famcc_o5_f64_init_sized(struct FamccO5F64 *storage,
                                     size_t storage_size,
                                     const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * `famcc_o5_f64_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o5_f64_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o5_f64_init_discretized(struct FamccO5F64 *storage,
+                                          const FamccConfigF64 *config,
+                                          const FamccDiscretizedF64 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o5_f64_init`)
+ * for `famcc_o5_f64_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o5_f64_discretize(const FamccConfigF64 *config,
+                                    FamccDiscretizedF64 *out,
                                     struct FamccError *error);
 
 /**
@@ -2065,6 +2361,30 @@ FamccStatus famcc_o6_f32_init_sized(struct FamccO6F32 *storage,
                                     struct FamccError *error);
 
 /**
+ * `famcc_o6_f32_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o6_f32_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o6_f32_init_discretized(struct FamccO6F32 *storage,
+                                          const FamccConfigF32 *config,
+                                          const FamccDiscretizedF32 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o6_f32_init`)
+ * for `famcc_o6_f32_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o6_f32_discretize(const FamccConfigF32 *config,
+                                    FamccDiscretizedF32 *out,
+                                    struct FamccError *error);
+
+/**
  * One output-feedback step: consumes the error sample `e = y - y_d`, writes
  * the control `v` to hold until the next sample. On error `*v` is not
  * written and the state is unchanged, except `FAMCC_STATUS_OVERFLOW` after
@@ -2129,6 +2449,30 @@ FamccStatus famcc_o6_f64_init(struct FamccO6F64 *storage,
 FamccStatus famcc_o6_f64_init_sized(struct FamccO6F64 *storage,
                                     size_t storage_size,
                                     const FamccConfigF64 *config,
+                                    struct FamccError *error);
+
+/**
+ * `famcc_o6_f64_init` with the differentiator's recursion precomputed on a host by
+ * `famcc_o6_f64_discretize` for the same configuration: nothing is discretized
+ * here, so a firmware that initialises only this way links no matrix
+ * exponential. The recursion is checked (finite, prefilter gain in
+ * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+ * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+ * belongs to `config` is the caller's to ensure.
+ */
+FamccStatus famcc_o6_f64_init_discretized(struct FamccO6F64 *storage,
+                                          const FamccConfigF64 *config,
+                                          const FamccDiscretizedF64 *discretized,
+                                          struct FamccError *error);
+
+/**
+ * The differentiator's recursion of `config` (validated as by `famcc_o6_f64_init`)
+ * for `famcc_o6_f64_init_discretized`: run it on a host and store `*out` as
+ * constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+ * `differentiator.enabled`) when the configuration has no differentiator.
+ */
+FamccStatus famcc_o6_f64_discretize(const FamccConfigF64 *config,
+                                    FamccDiscretizedF64 *out,
                                     struct FamccError *error);
 
 /**

@@ -7,7 +7,7 @@ use core::mem::{align_of, size_of};
 
 use crate::lint::lint;
 use crate::reports::*;
-use crate::storage::{diagnostics, fits, init, magic, reset, step};
+use crate::storage::{diagnostics, discretize, fits, init, magic, reset, step};
 use crate::types::*;
 
 /// 64-bit words of `FamccO1F32` (the controller, its tag and headroom).
@@ -187,7 +187,7 @@ pub unsafe extern "C" fn famcc_o1_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 1>(storage, None, config, error, MAGIC_O1_F32)
+    init::<_, f32, 1>(storage, None, config, None, error, MAGIC_O1_F32)
 }
 
 /// `famcc_o1_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -201,7 +201,37 @@ pub unsafe extern "C" fn famcc_o1_f32_init_sized(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 1>(storage, Some(storage_size), config, error, MAGIC_O1_F32)
+    init::<_, f32, 1>(storage, Some(storage_size), config, None, error, MAGIC_O1_F32)
+}
+
+/// `famcc_o1_f32_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o1_f32_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o1_f32_init_discretized(
+    storage: *mut FamccO1F32,
+    config: *const FamccConfigF32,
+    discretized: *const FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 1>(storage, None, config, Some(discretized), error, MAGIC_O1_F32)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o1_f32_init`)
+/// for `famcc_o1_f32_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o1_f32_discretize(
+    config: *const FamccConfigF32,
+    out: *mut FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f32, 1>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -269,7 +299,7 @@ pub unsafe extern "C" fn famcc_o1_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 1>(storage, None, config, error, MAGIC_O1_F64)
+    init::<_, f64, 1>(storage, None, config, None, error, MAGIC_O1_F64)
 }
 
 /// `famcc_o1_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -283,7 +313,37 @@ pub unsafe extern "C" fn famcc_o1_f64_init_sized(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 1>(storage, Some(storage_size), config, error, MAGIC_O1_F64)
+    init::<_, f64, 1>(storage, Some(storage_size), config, None, error, MAGIC_O1_F64)
+}
+
+/// `famcc_o1_f64_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o1_f64_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o1_f64_init_discretized(
+    storage: *mut FamccO1F64,
+    config: *const FamccConfigF64,
+    discretized: *const FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 1>(storage, None, config, Some(discretized), error, MAGIC_O1_F64)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o1_f64_init`)
+/// for `famcc_o1_f64_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o1_f64_discretize(
+    config: *const FamccConfigF64,
+    out: *mut FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f64, 1>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -351,7 +411,7 @@ pub unsafe extern "C" fn famcc_o2_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 2>(storage, None, config, error, MAGIC_O2_F32)
+    init::<_, f32, 2>(storage, None, config, None, error, MAGIC_O2_F32)
 }
 
 /// `famcc_o2_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -365,7 +425,37 @@ pub unsafe extern "C" fn famcc_o2_f32_init_sized(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 2>(storage, Some(storage_size), config, error, MAGIC_O2_F32)
+    init::<_, f32, 2>(storage, Some(storage_size), config, None, error, MAGIC_O2_F32)
+}
+
+/// `famcc_o2_f32_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o2_f32_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f32_init_discretized(
+    storage: *mut FamccO2F32,
+    config: *const FamccConfigF32,
+    discretized: *const FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 2>(storage, None, config, Some(discretized), error, MAGIC_O2_F32)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o2_f32_init`)
+/// for `famcc_o2_f32_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f32_discretize(
+    config: *const FamccConfigF32,
+    out: *mut FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f32, 2>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -433,7 +523,7 @@ pub unsafe extern "C" fn famcc_o2_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 2>(storage, None, config, error, MAGIC_O2_F64)
+    init::<_, f64, 2>(storage, None, config, None, error, MAGIC_O2_F64)
 }
 
 /// `famcc_o2_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -447,7 +537,37 @@ pub unsafe extern "C" fn famcc_o2_f64_init_sized(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 2>(storage, Some(storage_size), config, error, MAGIC_O2_F64)
+    init::<_, f64, 2>(storage, Some(storage_size), config, None, error, MAGIC_O2_F64)
+}
+
+/// `famcc_o2_f64_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o2_f64_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f64_init_discretized(
+    storage: *mut FamccO2F64,
+    config: *const FamccConfigF64,
+    discretized: *const FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 2>(storage, None, config, Some(discretized), error, MAGIC_O2_F64)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o2_f64_init`)
+/// for `famcc_o2_f64_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o2_f64_discretize(
+    config: *const FamccConfigF64,
+    out: *mut FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f64, 2>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -515,7 +635,7 @@ pub unsafe extern "C" fn famcc_o3_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 3>(storage, None, config, error, MAGIC_O3_F32)
+    init::<_, f32, 3>(storage, None, config, None, error, MAGIC_O3_F32)
 }
 
 /// `famcc_o3_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -529,7 +649,37 @@ pub unsafe extern "C" fn famcc_o3_f32_init_sized(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 3>(storage, Some(storage_size), config, error, MAGIC_O3_F32)
+    init::<_, f32, 3>(storage, Some(storage_size), config, None, error, MAGIC_O3_F32)
+}
+
+/// `famcc_o3_f32_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o3_f32_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f32_init_discretized(
+    storage: *mut FamccO3F32,
+    config: *const FamccConfigF32,
+    discretized: *const FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 3>(storage, None, config, Some(discretized), error, MAGIC_O3_F32)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o3_f32_init`)
+/// for `famcc_o3_f32_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f32_discretize(
+    config: *const FamccConfigF32,
+    out: *mut FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f32, 3>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -597,7 +747,7 @@ pub unsafe extern "C" fn famcc_o3_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 3>(storage, None, config, error, MAGIC_O3_F64)
+    init::<_, f64, 3>(storage, None, config, None, error, MAGIC_O3_F64)
 }
 
 /// `famcc_o3_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -611,7 +761,37 @@ pub unsafe extern "C" fn famcc_o3_f64_init_sized(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 3>(storage, Some(storage_size), config, error, MAGIC_O3_F64)
+    init::<_, f64, 3>(storage, Some(storage_size), config, None, error, MAGIC_O3_F64)
+}
+
+/// `famcc_o3_f64_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o3_f64_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f64_init_discretized(
+    storage: *mut FamccO3F64,
+    config: *const FamccConfigF64,
+    discretized: *const FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 3>(storage, None, config, Some(discretized), error, MAGIC_O3_F64)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o3_f64_init`)
+/// for `famcc_o3_f64_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o3_f64_discretize(
+    config: *const FamccConfigF64,
+    out: *mut FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f64, 3>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -679,7 +859,7 @@ pub unsafe extern "C" fn famcc_o4_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 4>(storage, None, config, error, MAGIC_O4_F32)
+    init::<_, f32, 4>(storage, None, config, None, error, MAGIC_O4_F32)
 }
 
 /// `famcc_o4_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -693,7 +873,37 @@ pub unsafe extern "C" fn famcc_o4_f32_init_sized(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 4>(storage, Some(storage_size), config, error, MAGIC_O4_F32)
+    init::<_, f32, 4>(storage, Some(storage_size), config, None, error, MAGIC_O4_F32)
+}
+
+/// `famcc_o4_f32_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o4_f32_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o4_f32_init_discretized(
+    storage: *mut FamccO4F32,
+    config: *const FamccConfigF32,
+    discretized: *const FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 4>(storage, None, config, Some(discretized), error, MAGIC_O4_F32)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o4_f32_init`)
+/// for `famcc_o4_f32_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o4_f32_discretize(
+    config: *const FamccConfigF32,
+    out: *mut FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f32, 4>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -761,7 +971,7 @@ pub unsafe extern "C" fn famcc_o4_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 4>(storage, None, config, error, MAGIC_O4_F64)
+    init::<_, f64, 4>(storage, None, config, None, error, MAGIC_O4_F64)
 }
 
 /// `famcc_o4_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -775,7 +985,37 @@ pub unsafe extern "C" fn famcc_o4_f64_init_sized(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 4>(storage, Some(storage_size), config, error, MAGIC_O4_F64)
+    init::<_, f64, 4>(storage, Some(storage_size), config, None, error, MAGIC_O4_F64)
+}
+
+/// `famcc_o4_f64_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o4_f64_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o4_f64_init_discretized(
+    storage: *mut FamccO4F64,
+    config: *const FamccConfigF64,
+    discretized: *const FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 4>(storage, None, config, Some(discretized), error, MAGIC_O4_F64)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o4_f64_init`)
+/// for `famcc_o4_f64_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o4_f64_discretize(
+    config: *const FamccConfigF64,
+    out: *mut FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f64, 4>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -843,7 +1083,7 @@ pub unsafe extern "C" fn famcc_o5_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 5>(storage, None, config, error, MAGIC_O5_F32)
+    init::<_, f32, 5>(storage, None, config, None, error, MAGIC_O5_F32)
 }
 
 /// `famcc_o5_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -857,7 +1097,37 @@ pub unsafe extern "C" fn famcc_o5_f32_init_sized(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 5>(storage, Some(storage_size), config, error, MAGIC_O5_F32)
+    init::<_, f32, 5>(storage, Some(storage_size), config, None, error, MAGIC_O5_F32)
+}
+
+/// `famcc_o5_f32_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o5_f32_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o5_f32_init_discretized(
+    storage: *mut FamccO5F32,
+    config: *const FamccConfigF32,
+    discretized: *const FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 5>(storage, None, config, Some(discretized), error, MAGIC_O5_F32)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o5_f32_init`)
+/// for `famcc_o5_f32_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o5_f32_discretize(
+    config: *const FamccConfigF32,
+    out: *mut FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f32, 5>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -925,7 +1195,7 @@ pub unsafe extern "C" fn famcc_o5_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 5>(storage, None, config, error, MAGIC_O5_F64)
+    init::<_, f64, 5>(storage, None, config, None, error, MAGIC_O5_F64)
 }
 
 /// `famcc_o5_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -939,7 +1209,37 @@ pub unsafe extern "C" fn famcc_o5_f64_init_sized(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 5>(storage, Some(storage_size), config, error, MAGIC_O5_F64)
+    init::<_, f64, 5>(storage, Some(storage_size), config, None, error, MAGIC_O5_F64)
+}
+
+/// `famcc_o5_f64_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o5_f64_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o5_f64_init_discretized(
+    storage: *mut FamccO5F64,
+    config: *const FamccConfigF64,
+    discretized: *const FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 5>(storage, None, config, Some(discretized), error, MAGIC_O5_F64)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o5_f64_init`)
+/// for `famcc_o5_f64_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o5_f64_discretize(
+    config: *const FamccConfigF64,
+    out: *mut FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f64, 5>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -1007,7 +1307,7 @@ pub unsafe extern "C" fn famcc_o6_f32_init(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 6>(storage, None, config, error, MAGIC_O6_F32)
+    init::<_, f32, 6>(storage, None, config, None, error, MAGIC_O6_F32)
 }
 
 /// `famcc_o6_f32_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -1021,7 +1321,37 @@ pub unsafe extern "C" fn famcc_o6_f32_init_sized(
     config: *const FamccConfigF32,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f32, 6>(storage, Some(storage_size), config, error, MAGIC_O6_F32)
+    init::<_, f32, 6>(storage, Some(storage_size), config, None, error, MAGIC_O6_F32)
+}
+
+/// `famcc_o6_f32_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o6_f32_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o6_f32_init_discretized(
+    storage: *mut FamccO6F32,
+    config: *const FamccConfigF32,
+    discretized: *const FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f32, 6>(storage, None, config, Some(discretized), error, MAGIC_O6_F32)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o6_f32_init`)
+/// for `famcc_o6_f32_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o6_f32_discretize(
+    config: *const FamccConfigF32,
+    out: *mut FamccDiscretizedF32,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f32, 6>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes
@@ -1089,7 +1419,7 @@ pub unsafe extern "C" fn famcc_o6_f64_init(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 6>(storage, None, config, error, MAGIC_O6_F64)
+    init::<_, f64, 6>(storage, None, config, None, error, MAGIC_O6_F64)
 }
 
 /// `famcc_o6_f64_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -1103,7 +1433,37 @@ pub unsafe extern "C" fn famcc_o6_f64_init_sized(
     config: *const FamccConfigF64,
     error: *mut FamccError,
 ) -> FamccStatus {
-    init::<_, f64, 6>(storage, Some(storage_size), config, error, MAGIC_O6_F64)
+    init::<_, f64, 6>(storage, Some(storage_size), config, None, error, MAGIC_O6_F64)
+}
+
+/// `famcc_o6_f64_init` with the differentiator's recursion precomputed on a host by
+/// `famcc_o6_f64_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o6_f64_init_discretized(
+    storage: *mut FamccO6F64,
+    config: *const FamccConfigF64,
+    discretized: *const FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    init::<_, f64, 6>(storage, None, config, Some(discretized), error, MAGIC_O6_F64)
+}
+
+/// The differentiator's recursion of `config` (validated as by `famcc_o6_f64_init`)
+/// for `famcc_o6_f64_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern "C" fn famcc_o6_f64_discretize(
+    config: *const FamccConfigF64,
+    out: *mut FamccDiscretizedF64,
+    error: *mut FamccError,
+) -> FamccStatus {
+    discretize::<f64, 6>(config, out, error)
 }
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes

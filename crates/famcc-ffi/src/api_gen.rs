@@ -84,7 +84,7 @@ pub(crate) fn render() -> String {
          use core::mem::{align_of, size_of};\n\n\
          use crate::lint::lint;\n\
          use crate::reports::*;\n\
-         use crate::storage::{diagnostics, fits, init, magic, reset, step};\n\
+         use crate::storage::{diagnostics, discretize, fits, init, magic, reset, step};\n\
          use crate::types::*;\n",
     );
     for k in Kind::all() {
@@ -148,7 +148,7 @@ pub unsafe extern \"C\" fn {p}_init(
     config: *const FamccConfig{tag},
     error: *mut FamccError,
 ) -> FamccStatus {{
-    init::<_, {t}, {n}>(storage, None, config, error, MAGIC_O{n}_{tag})
+    init::<_, {t}, {n}>(storage, None, config, None, error, MAGIC_O{n}_{tag})
 }}
 
 /// `{p}_init` for storage given as a buffer of `storage_size` bytes (e.g. a
@@ -162,7 +162,37 @@ pub unsafe extern \"C\" fn {p}_init_sized(
     config: *const FamccConfig{tag},
     error: *mut FamccError,
 ) -> FamccStatus {{
-    init::<_, {t}, {n}>(storage, Some(storage_size), config, error, MAGIC_O{n}_{tag})
+    init::<_, {t}, {n}>(storage, Some(storage_size), config, None, error, MAGIC_O{n}_{tag})
+}}
+
+/// `{p}_init` with the differentiator's recursion precomputed on a host by
+/// `{p}_discretize` for the same configuration: nothing is discretized
+/// here, so a firmware that initialises only this way links no matrix
+/// exponential. The recursion is checked (finite, prefilter gain in
+/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
+/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
+/// belongs to `config` is the caller's to ensure.
+#[no_mangle]
+pub unsafe extern \"C\" fn {p}_init_discretized(
+    storage: *mut {ty},
+    config: *const FamccConfig{tag},
+    discretized: *const FamccDiscretized{tag},
+    error: *mut FamccError,
+) -> FamccStatus {{
+    init::<_, {t}, {n}>(storage, None, config, Some(discretized), error, MAGIC_O{n}_{tag})
+}}
+
+/// The differentiator's recursion of `config` (validated as by `{p}_init`)
+/// for `{p}_init_discretized`: run it on a host and store `*out` as
+/// constants in the firmware. `FAMCC_STATUS_INVALID_CONFIG` (parameter
+/// `differentiator.enabled`) when the configuration has no differentiator.
+#[no_mangle]
+pub unsafe extern \"C\" fn {p}_discretize(
+    config: *const FamccConfig{tag},
+    out: *mut FamccDiscretized{tag},
+    error: *mut FamccError,
+) -> FamccStatus {{
+    discretize::<{t}, {n}>(config, out, error)
 }}
 
 /// One output-feedback step: consumes the error sample `e = y - y_d`, writes

@@ -8,8 +8,8 @@ use crate::reports::*;
 use crate::types::*;
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use famcc_core::{
-    Config, ConfigError, Constraint, Diagnostics, Discretization, Feedback, Gamma, HighGain, Latch, Real,
-    Skew, SkewKind, StepError, Transition,
+    Config, ConfigBuilder, ConfigError, Constraint, Diagnostics, DiscreteHgd, Discretization, Feedback,
+    Gamma, HighGain, Latch, Real, Skew, SkewKind, StepError, Transition,
 };
 
 pub(crate) fn status_of(e: StepError) -> FamccStatus {
@@ -148,6 +148,49 @@ fn skew<T: Real>(s: &FamccSkew<T>) -> Result<Option<Skew<T>>, ConfigError> {
 
 /// The famcc-core configuration of order `N` described by `c`.
 pub(crate) fn to_config<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<Config<T, N>, ConfigError> {
+    to_builder(c)?.build()
+}
+
+/// [`to_config`] with the differentiator's recursion precomputed (famcc-core's
+/// `ConfigBuilder::build_discretized`: checked, not recomputed).
+pub(crate) fn to_config_discretized<T: Real, const N: usize>(
+    c: &FamccConfig<T>,
+    d: &FamccDiscretized<T>,
+) -> Result<Config<T, N>, ConfigError> {
+    let mut hgd = DiscreteHgd {
+        phi: [[T::zero(); N]; N],
+        gamma: [T::zero(); N],
+        prefilter: d.prefilter,
+    };
+    for (row, src) in hgd.phi.iter_mut().zip(d.phi.iter()) {
+        row.iter_mut().zip(src.iter()).for_each(|(x, s)| *x = *s);
+    }
+    hgd.gamma
+        .iter_mut()
+        .zip(d.gamma.iter())
+        .for_each(|(x, s)| *x = *s);
+    to_builder(c)?.build_discretized(hgd)
+}
+
+/// famcc-core's recursion as a C [`FamccDiscretized`] (unused entries zero).
+pub(crate) fn discretized_to_c<T: Real, const N: usize>(d: &DiscreteHgd<T, N>) -> FamccDiscretized<T> {
+    let mut out = FamccDiscretized {
+        phi: [[T::zero(); FAMCC_MAX_ORDER]; FAMCC_MAX_ORDER],
+        gamma: [T::zero(); FAMCC_MAX_ORDER],
+        prefilter: d.prefilter,
+    };
+    for (row, src) in out.phi.iter_mut().zip(d.phi.iter()) {
+        row.iter_mut().zip(src.iter()).for_each(|(x, s)| *x = *s);
+    }
+    out.gamma
+        .iter_mut()
+        .zip(d.gamma.iter())
+        .for_each(|(x, s)| *x = *s);
+    out
+}
+
+/// The builder of a C configuration (every value given, nothing checked yet).
+fn to_builder<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<ConfigBuilder<T, N>, ConfigError> {
     let placeholder = (Feedback::Linear { k: T::one() }, None);
     let mut laws = [placeholder; FAMCC_MAX_STAGES];
     for (i, (slot, st)) in laws
@@ -227,7 +270,7 @@ pub(crate) fn to_config<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<C
         x if x == FamccFlexible::Auto as u32 => b,
         _ => return Err(ConfigError::new("flexible", "must be a FAMCC_FLEXIBLE_* value")),
     };
-    b.build()
+    Ok(b)
 }
 
 /// famcc-core's defaults as a C configuration: `k0`, `T_s`, Gamma, the

@@ -137,6 +137,8 @@ mod tests;
 mod tests_options;
 
 #[cfg(test)]
+mod tests_discretized;
+#[cfg(test)]
 mod tests_orders;
 
 #[cfg(test)]

@@ -4,10 +4,10 @@
 use core::mem::{align_of, size_of};
 use core::ptr;
 
-use crate::convert::{diag_to_c, report, status_of, to_config};
+use crate::convert::{diag_to_c, discretized_to_c, report, status_of, to_config, to_config_discretized};
 use crate::reports::*;
 use crate::types::*;
-use famcc_core::{Controller, Real};
+use famcc_core::{ConfigError, Controller, Real};
 
 /// What the storage holds: a tag (which controller type, initialised or not)
 /// and the controller.
@@ -69,10 +69,11 @@ pub(crate) unsafe fn init<S, T: Real, const N: usize>(
     storage: *mut S,
     size: Option<usize>,
     config: *const FamccConfig<T>,
+    discretized: Option<*const FamccDiscretized<T>>,
     error: *mut FamccError,
     tag: u64,
 ) -> FamccStatus {
-    if storage.is_null() || config.is_null() {
+    if storage.is_null() || config.is_null() || discretized.is_some_and(|d| d.is_null()) {
         return FamccStatus::NullPointer;
     }
     if size.is_some_and(|n| n < size_of::<S>()) {
@@ -85,9 +86,41 @@ pub(crate) unsafe fn init<S, T: Real, const N: usize>(
     // Until a controller is in place the storage reads as uninitialised.
     ptr::write(ptr::addr_of_mut!((*s).magic), 0);
     let c = ptr::read_unaligned(config);
-    match to_config::<T, N>(&c).map(Controller::new) {
+    let built = match discretized {
+        Some(d) => to_config_discretized::<T, N>(&c, &ptr::read_unaligned(d)),
+        None => to_config::<T, N>(&c),
+    };
+    match built.map(Controller::new) {
         Ok(ctrl) => {
             ptr::write(s, Slot { magic: tag, ctrl });
+            FamccStatus::Ok
+        }
+        Err(e) => {
+            report(error, &e);
+            FamccStatus::InvalidConfig
+        }
+    }
+}
+
+/// The differentiator's recursion of a validated configuration (for
+/// `*_init_discretized` on a target).
+pub(crate) unsafe fn discretize<T: Real, const N: usize>(
+    config: *const FamccConfig<T>,
+    out: *mut FamccDiscretized<T>,
+    error: *mut FamccError,
+) -> FamccStatus {
+    if config.is_null() || out.is_null() {
+        return FamccStatus::NullPointer;
+    }
+    let result = to_config::<T, N>(&ptr::read_unaligned(config)).and_then(|cfg| {
+        cfg.discretized().ok_or(ConfigError::new(
+            "differentiator.enabled",
+            "must be nonzero: without a differentiator there is no recursion to precompute",
+        ))
+    });
+    match result {
+        Ok(d) => {
+            ptr::write_unaligned(out, discretized_to_c(&d));
             FamccStatus::Ok
         }
         Err(e) => {

@@ -109,16 +109,16 @@ fn rust_example3<T: Real>() -> Controller<T, 3> {
     Controller::new(designs::example3(Variant::Code, T::from_f64(1e-3)).unwrap())
 }
 
-fn c_example1<T: Real>() -> FamccConfig<T> {
+pub(super) fn c_example1<T: Real>() -> FamccConfig<T> {
     c_config(rust_example1::<T>().config())
 }
 
-fn c_example3<T: Real>() -> FamccConfig<T> {
+pub(super) fn c_example3<T: Real>() -> FamccConfig<T> {
     c_config(rust_example3::<T>().config())
 }
 
 /// A decaying oscillation with a pulse (drives the flexible boundary).
-fn signal<T: Real>(n: usize) -> Vec<T> {
+pub(super) fn signal<T: Real>(n: usize) -> Vec<T> {
     (0..n)
         .map(|k| {
             let t = k as f64 * 1e-3;

@@ -346,3 +346,25 @@ pub struct FamccConfig<T: Copy> {
 pub type FamccConfigF32 = FamccConfig<f32>;
 /// `double` configuration.
 pub type FamccConfigF64 = FamccConfig<f64>;
+
+/// A differentiator's recursion `Zhat_{k+1} = Phi Zhat_k + Gamma f_k` for one
+/// sample period (famcc-core's `DiscreteHgd`): computed on a host by
+/// `*_discretize` and passed to `*_init_discretized` on a target, which then
+/// runs no matrix exponential (and links none).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccDiscretized<T> {
+    /// `Phi`, row-major: entry `(i, j)` is `phi[i][j]`; the first `order`
+    /// rows and columns are used.
+    pub phi: [[T; FAMCC_MAX_ORDER]; FAMCC_MAX_ORDER],
+    /// `Gamma`; the first `order` entries are used.
+    pub gamma: [T; FAMCC_MAX_ORDER],
+    /// The prefilter's gain per period, in `(0, 1]`; exactly 1 without a
+    /// prefilter.
+    pub prefilter: T,
+}
+
+/// `float` precomputed recursion.
+pub type FamccDiscretizedF32 = FamccDiscretized<f32>;
+/// `double` precomputed recursion.
+pub type FamccDiscretizedF64 = FamccDiscretized<f64>;

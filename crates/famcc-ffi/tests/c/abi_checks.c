@@ -83,6 +83,24 @@ int main(void)
     CHECK(famcc_o2_f32_diagnostics(p, &d) == FAMCC_STATUS_OK);
     CHECK(d.t == 2.0 * (double)1e-3f); /* the third sample's time is 2 dt */
 
+    /* the recursion precomputed (host) and used (target): the same outputs */
+    FamccDiscretizedF32 rec;
+    CHECK(famcc_o2_f32_discretize(&cfg, &rec, &err) == FAMCC_STATUS_OK);
+    static FamccO2F32 direct, precomputed;
+    CHECK(famcc_o2_f32_init(&direct, &cfg, &err) == FAMCC_STATUS_OK);
+    CHECK(famcc_o2_f32_init_discretized(&precomputed, &cfg, &rec, &err) == FAMCC_STATUS_OK);
+    for (int k = 0; k < 100; k++) {
+        float e = 0.5f - 0.01f * (float)k, a = 0.0f, b = 1.0f;
+        CHECK(famcc_o2_f32_step(&direct, e, &a) == FAMCC_STATUS_OK);
+        CHECK(famcc_o2_f32_step(&precomputed, e, &b) == FAMCC_STATUS_OK);
+        CHECK(memcmp(&a, &b, sizeof a) == 0);
+    }
+    rec.phi[1][1] = 1.5f; /* unstable: rejected, naming the parameter */
+    CHECK(famcc_o2_f32_init_discretized(&precomputed, &cfg, &rec, &err) ==
+          FAMCC_STATUS_INVALID_CONFIG);
+    CHECK(strcmp(err.parameter, "discretized") == 0);
+    CHECK(famcc_o2_f32_init_discretized(&precomputed, &cfg, NULL, &err) == FAMCC_STATUS_NULL_POINTER);
+
     /* every status has a text; OVERFLOW says the sample was consumed */
     for (uint32_t s = 0; s <= FAMCC_STATUS_STORAGE_TOO_SMALL; s++) {
         CHECK(strcmp(famcc_status_str(s), "unknown status") != 0);
