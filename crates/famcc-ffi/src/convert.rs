@@ -157,36 +157,38 @@ pub(crate) fn to_config_discretized<T: Real, const N: usize>(
     c: &FamccConfig<T>,
     d: &FamccDiscretized<T>,
 ) -> Result<Config<T, N>, ConfigError> {
-    let mut hgd = DiscreteHgd {
-        phi: [[T::zero(); N]; N],
-        gamma: [T::zero(); N],
+    let (phi, gamma) = resized(&d.phi, &d.gamma);
+    let hgd = DiscreteHgd {
+        phi,
+        gamma,
         prefilter: d.prefilter,
     };
-    for (row, src) in hgd.phi.iter_mut().zip(d.phi.iter()) {
-        row.iter_mut().zip(src.iter()).for_each(|(x, s)| *x = *s);
-    }
-    hgd.gamma
-        .iter_mut()
-        .zip(d.gamma.iter())
-        .for_each(|(x, s)| *x = *s);
     to_builder(c)?.build_discretized(hgd)
 }
 
 /// famcc-core's recursion as a C [`FamccDiscretized`] (unused entries zero).
 pub(crate) fn discretized_to_c<T: Real, const N: usize>(d: &DiscreteHgd<T, N>) -> FamccDiscretized<T> {
-    let mut out = FamccDiscretized {
-        phi: [[T::zero(); FAMCC_MAX_ORDER]; FAMCC_MAX_ORDER],
-        gamma: [T::zero(); FAMCC_MAX_ORDER],
+    let (phi, gamma) = resized(&d.phi, &d.gamma);
+    FamccDiscretized {
+        phi,
+        gamma,
         prefilter: d.prefilter,
-    };
-    for (row, src) in out.phi.iter_mut().zip(d.phi.iter()) {
+    }
+}
+
+/// `Phi` and `Gamma` copied between sizes: the common leading part, the
+/// rest zero.
+fn resized<T: Real, const A: usize, const B: usize>(
+    phi: &[[T; A]; A],
+    gamma: &[T; A],
+) -> ([[T; B]; B], [T; B]) {
+    let mut p = [[T::zero(); B]; B];
+    for (row, src) in p.iter_mut().zip(phi.iter()) {
         row.iter_mut().zip(src.iter()).for_each(|(x, s)| *x = *s);
     }
-    out.gamma
-        .iter_mut()
-        .zip(d.gamma.iter())
-        .for_each(|(x, s)| *x = *s);
-    out
+    let mut g = [T::zero(); B];
+    g.iter_mut().zip(gamma.iter()).for_each(|(x, s)| *x = *s);
+    (p, g)
 }
 
 /// The builder of a C configuration (every value given, nothing checked yet).
