@@ -89,12 +89,30 @@ build() { # name, dir, cargo args...
 
 # ---------------------------------------------------------------- builds
 phase "build"
-build host "$ROOT/embedded" build --release -p famcc-fw-host || true
-build firmware "$ROOT/embedded/fw" build --release --target $TGT "${BUILD_STD[@]}" --bins || true
-build ffi-host "$ROOT/crates/famcc-ffi" build --release || true
+# The host builds (the host twin and the C ABI for x86_64) run beside the
+# target's, in a build directory of their own ($HOST_OUT, so that neither
+# waits for the other's lock): fat LTO links on one core each.
+HOST_OUT="$OUT/host"
+(
+    export CARGO_TARGET_DIR="$HOST_OUT"
+    build host "$ROOT/embedded" build --release -p famcc-fw-host || true
+    build ffi-host "$ROOT/crates/famcc-ffi" build --release || true
+) >"$LOG/host-builds.txt" 2>&1 &
+HOST_BUILDS=$!
+build firmware "$ROOT/embedded/fw" build --release --target $TGT "${BUILD_STD[@]}" --bin famcc-fw || true
+# The size probes: each compiles famcc-core's features for its own design
+# alone (embedded/fw/Cargo.toml), as a firmware that configures that design.
+build size-o2 "$ROOT/embedded/fw" build --release --target $TGT "${BUILD_STD[@]}" --no-default-features \
+    --features ex1 --bin size-base --bin size-o2-built --bin size-o2-stepped || true
+build size-o3 "$ROOT/embedded/fw" build --release --target $TGT "${BUILD_STD[@]}" --no-default-features \
+    --features ex3 --bin size-o3-built --bin size-o3-stepped || true
 build ffi-$TGT "$ROOT/crates/famcc-ffi" build --release --target $TGT "${BUILD_STD[@]}" || true
 gcc -shared -fPIC -O2 -Wall -Wextra -o "$OUT/tools/icount.so" "$ROOT/embedded/tools/icount.c" \
     || fail "build QEMU plugin"
+wait "$HOST_BUILDS" || true
+cat "$LOG/host-builds.txt"
+mapfile -t host_failures < <(sed -n 's/^FAIL: //p' "$LOG/host-builds.txt")
+FAILURES+=("${host_failures[@]}")
 T_BUILD=$(date +%s)
 
 # ---------------------------------------------------------------- C ABI tests and header
@@ -130,19 +148,19 @@ fi
 
 # ---------------------------------------------------------------- firmware: loops, vectors
 phase "firmware in QEMU: closed loops, replay, test vectors"
-if [ -x "$FW/famcc-fw" ] && [ -x "$OUT/release/famcc-fw-host" ]; then
+if [ -x "$FW/famcc-fw" ] && [ -x "$HOST_OUT/release/famcc-fw-host" ]; then
     set +e
     timeout 300 "${QEMU[@]}" -semihosting-config enable=on,target=native,chardev=con,arg=famcc-fw,arg=check \
         -kernel "$FW/famcc-fw" >"$LOG/target.txt" 2>"$LOG/target.err"
     rc_fw=$?
-    "$OUT/release/famcc-fw-host" run >"$LOG/host.txt" 2>"$LOG/host.err"
+    "$HOST_OUT/release/famcc-fw-host" run >"$LOG/host.txt" 2>"$LOG/host.err"
     rc_host=$?
     set -e
     grep -vE "^vec " "$LOG/target.txt" || true
     [ $rc_fw -eq 0 ] || { cat "$LOG/target.err"; fail "firmware checks (QEMU exit status $rc_fw)"; }
     [ $rc_host -eq 0 ] || fail "host twin checks (exit status $rc_host; see $LOG/host.txt)"
     echo "-- host vs target (test vectors, loop digests)"
-    if ! "$OUT/release/famcc-fw-host" compare "$LOG/host.txt" "$LOG/target.txt" | tee "$LOG/compare.txt"; then
+    if ! "$HOST_OUT/release/famcc-fw-host" compare "$LOG/host.txt" "$LOG/target.txt" | tee "$LOG/compare.txt"; then
         fail "host and target outputs differ"
     fi
 else
@@ -220,7 +238,7 @@ if [ -x "$FW/famcc-fw" ]; then
 fi
 
 # ---------------------------------------------------------------- flash
-phase "controller flash (.text + .rodata, thumbv7em, opt-level 3, LTO)"
+phase "controller flash (.text + .rodata, thumbv7em, opt-level 3, LTO; famcc-core with the design's features alone)"
 textsz() { arm-none-eabi-size -B "$1" | awk 'NR == 2 { print $1 }'; }
 declare -A TEXT TEXT_STEP TEXT_NEW
 if [ -f "$FW/size-base" ]; then
@@ -250,7 +268,7 @@ fi
 phase "C example (host gcc, and arm-none-eabi-gcc in QEMU)"
 CEX="$ROOT/crates/famcc-ffi/examples/c"
 if gcc -std=c11 -O2 -Wall -Wextra -Werror -pedantic -I"$ROOT/crates/famcc-ffi/include" "$CEX/main.c" \
-    "$OUT/release/libfamcc_ffi.a" -lm -o "$OUT/famcc-c-example" 2>"$LOG/c-host.log"; then
+    "$HOST_OUT/release/libfamcc_ffi.a" -lm -o "$OUT/famcc-c-example" 2>"$LOG/c-host.log"; then
     if "$OUT/famcc-c-example" >"$LOG/c-host.txt" 2>&1; then
         head -8 "$LOG/c-host.txt"
         echo "  ..."
@@ -265,7 +283,7 @@ else
 fi
 # The storage checks from C: NULL, misaligned, undersized storage, the wrong type.
 if gcc -std=c11 -O2 -Wall -Wextra -Werror -pedantic -I"$ROOT/crates/famcc-ffi/include" \
-    "$ROOT/crates/famcc-ffi/tests/c/abi_checks.c" "$OUT/release/libfamcc_ffi.a" -lm \
+    "$ROOT/crates/famcc-ffi/tests/c/abi_checks.c" "$HOST_OUT/release/libfamcc_ffi.a" -lm \
     -o "$OUT/famcc-c-abi-checks" 2>"$LOG/c-abi-checks.log"; then
     "$OUT/famcc-c-abi-checks" || fail "C ABI checks (crates/famcc-ffi/tests/c/abi_checks.c)"
 else

@@ -57,11 +57,17 @@ for manifest in Cargo.toml crates/famcc-ffi/Cargo.toml embedded/Cargo.toml; do
     cargo clippy --manifest-path "$manifest" --workspace --all-targets -- -D warnings
     RUSTDOCFLAGS="-D warnings" cargo doc --manifest-path "$manifest" --workspace --no-deps --quiet
 done
+# famcc-core with every optional design compiled out (src/compiled.rs), and
+# the firmware's size probes, which compile one design each.
+cargo clippy -p famcc-core --no-default-features --lib --tests -- -D warnings
+cargo clippy --manifest-path embedded/Cargo.toml --workspace --all-targets --all-features -- -D warnings
 mark "fmt, clippy, rustdoc (3 workspaces)"
 cargo test -p famcc-core -p famcc-paper
 # Every benchmark workload builds its controller and steps once (criterion's
 # test mode): a design the validation rules reject fails here, not in a bench run.
 cargo test -q -p famcc-core --benches
+# A design compiled out is rejected, naming its feature; the rest runs.
+cargo test -q -p famcc-core --no-default-features --test compiled_out
 # no_std: both build without the standard library.
 cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").

@@ -74,6 +74,7 @@ pub enum Feedback<T> {
 impl<T: Real> Feedback<T> {
     /// Checks the parameter rules of the law.
     pub fn validate(&self) -> Result<(), ConfigError> {
+        crate::compiled::law(self)?;
         let one = T::one();
         match *self {
             Feedback::Linear { k } => positive(k, "k"),
@@ -84,6 +85,7 @@ impl<T: Real> Feedback<T> {
                 }
                 Ok(())
             }
+            #[cfg(feature = "fixed-time")]
             Feedback::FixedTime { alpha, p, beta, q } => {
                 positive(alpha, "alpha")?;
                 positive(beta, "beta")?;
@@ -95,6 +97,7 @@ impl<T: Real> Feedback<T> {
                 }
                 Ok(())
             }
+            #[cfg(feature = "variable-exponent")]
             Feedback::VariableExponent { k, r_b, r_1, r_t } => {
                 positive(k, "k")?;
                 if !(r_b > T::zero() && r_b < one) {
@@ -117,6 +120,7 @@ impl<T: Real> Feedback<T> {
                 }
                 Ok(())
             }
+            #[cfg(feature = "variable-exponent")]
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
                 positive(beta, "beta")?;
                 positive(lambda, "lambda")?;
@@ -125,6 +129,9 @@ impl<T: Real> Feedback<T> {
                 }
                 Ok(())
             }
+            // Compiled out: rejected above.
+            #[allow(unreachable_patterns)]
+            _ => Ok(()),
         }
     }
 
@@ -135,6 +142,7 @@ impl<T: Real> Feedback<T> {
         !matches!(self, Feedback::Linear { .. })
     }
 
+    #[cfg(feature = "variable-exponent")]
     /// The variable-exponent coefficients `(a, b)` of eq. (45) (fxe).
     #[inline]
     fn exponent_coeffs(r_b: T, r_1: T, r_t: T) -> (T, T) {
@@ -148,16 +156,22 @@ impl<T: Real> Feedback<T> {
         match *self {
             Feedback::Linear { k } => -k * s,
             Feedback::FiniteTime { k, p } => -k * signed_pow(s, p),
+            #[cfg(feature = "fixed-time")]
             Feedback::FixedTime { alpha, p, beta, q } => {
                 -(alpha * signed_pow(s, p) + beta * signed_pow(s, q))
             }
+            #[cfg(feature = "variable-exponent")]
             Feedback::VariableExponent { k, r_b, r_1, r_t } => {
                 let (a, b) = Self::exponent_coeffs(r_b, r_1, r_t);
                 -k * signed_pow(s, var_exponent(s, a, b, r_b))
             }
+            #[cfg(feature = "variable-exponent")]
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
                 -beta * signed_pow(s, var_exponent(s, lambda, mu, T::zero()))
             }
+            // Compiled out (src/compiled.rs): no configuration holds it.
+            #[allow(unreachable_patterns)]
+            _ => T::nan(),
         }
     }
 
@@ -167,14 +181,20 @@ impl<T: Real> Feedback<T> {
         match *self {
             Feedback::Linear { k } => s * (-k),
             Feedback::FiniteTime { k, p } => s.signed_pow(p) * (-k),
+            #[cfg(feature = "fixed-time")]
             Feedback::FixedTime { alpha, p, beta, q } => -(s.signed_pow(p) * alpha + s.signed_pow(q) * beta),
+            #[cfg(feature = "variable-exponent")]
             Feedback::VariableExponent { k, r_b, r_1, r_t } => {
                 let (a, b) = Self::exponent_coeffs(r_b, r_1, r_t);
                 variable_signed_pow_jet(s, a, b, r_b) * (-k)
             }
+            #[cfg(feature = "variable-exponent")]
             Feedback::MoulayDiscontinuous { beta, lambda, mu } => {
                 variable_signed_pow_jet(s, lambda, mu, T::zero()) * (-beta)
             }
+            // Compiled out (src/compiled.rs): no configuration holds it.
+            #[allow(unreachable_patterns)]
+            _ => Jet::constant(T::nan()),
         }
     }
 
@@ -222,6 +242,7 @@ pub fn signed_pow<T: Real>(x: T, p: T) -> T {
     }
 }
 
+#[cfg(feature = "variable-exponent")]
 /// The variable exponent `r(s) = a s^2/(1 + b s^2) + r0`, written as
 /// `a/(b + (1/s)^2) + r0` for `|s| > 1` so that `s^2` cannot overflow (the
 /// law must stay defined, e.g. `-inf`, not NaN, at `|s| = 1e200`).
@@ -236,6 +257,7 @@ fn var_exponent<T: Real>(s: T, a: T, b: T, r0: T) -> T {
     }
 }
 
+#[cfg(feature = "variable-exponent")]
 /// `|s|^{r(s)} sign(s)` on a jet, with `r(s) = a s^2/(1 + b s^2) + r0`.
 ///
 /// `s^2` is never formed alone: it underflows below `|s| = 1e-154` (which would
@@ -271,6 +293,7 @@ fn variable_signed_pow_jet<T: Real, const K: usize>(s: Jet<T, K>, a: T, b: T, r0
     }
 }
 
+#[cfg(feature = "variable-exponent")]
 /// `s ln|s|` on a jet (`s != 0`), built from its derivative `s' (1 + ln|s|)`:
 /// its first derivative stays finite even for a subnormal `s`, where the
 /// `s'/s` inside `ln|s|` overflows.
@@ -289,6 +312,7 @@ fn x_ln_abs_x<T: Real, const K: usize>(s: Jet<T, K>) -> Jet<T, K> {
     Jet::from_taylor(c)
 }
 
+#[cfg(feature = "variable-exponent")]
 /// `min_{0<u<1} phi(u)` with `phi(u) = r_b (1 + b u)^2 + a u (1 + b u + ln u)`.
 ///
 /// For `s = sqrt(u)` in `(0, 1)`, `d/ds |s|^{r(s)} > 0` (the variable-exponent
@@ -326,6 +350,7 @@ fn ve_monotonicity_margin<T: Real>(a: T, b: T, r_b: T) -> T {
     r_b * (one + b * u) * (one + b * u) + dip
 }
 
+#[cfg(feature = "variable-exponent")]
 /// The left end of [`ve_monotonicity_margin`]'s bisection, `hi - 1 - (2 +
 /// c) b`, where `psi < 0`: for `v <= hi = -2 - c`, `psi(v) <= v + 2 + c +
 /// (2 + c) b e^(-2-c)`, and `(2 + c) e^(-2-c) < 1` for `c >= 0` (a, b, c > 0
@@ -334,7 +359,7 @@ fn ve_left_end<T: Real>(hi: T, b: T, c: T) -> T {
     hi - T::one() - (T::from_f64(2.0) + c) * b
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "variable-exponent"))]
 mod tests {
     use super::ve_monotonicity_margin;
 

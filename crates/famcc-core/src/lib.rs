@@ -38,6 +38,24 @@
 //! # assert!(v.is_finite());
 //! # Ok::<(), Box<dyn core::error::Error>>(())
 //! ```
+//!
+//! ## Cargo features
+//!
+//! Every design is compiled by default (feature `all`). A firmware that
+//! configures one design can depend on famcc-core with
+//! `default-features = false` and that design's features alone: the other
+//! variants cost no flash, and [`ConfigBuilder::build`] rejects them with a
+//! [`ConfigError`] that names the feature to enable.
+//!
+//! | feature | compiles |
+//! |---|---|
+//! | (always) | the linear and finite-time laws, the longitudinal constraint, the exponential, cubic and quintic transitions |
+//! | `fixed-time` | [`Feedback::FixedTime`] |
+//! | `variable-exponent` | [`Feedback::VariableExponent`], [`Feedback::MoulayDiscontinuous`] |
+//! | `skew` | [`Skew`] (SSMD and NSMD) |
+//! | `sine` | [`Transition::Sine`] |
+//! | `lateral` | [`Constraint::Lateral`] |
+//! | `oblique` | [`Constraint::Oblique`] |
 #![no_std]
 #![forbid(unsafe_code)]
 #![cfg_attr(
@@ -55,6 +73,7 @@
 extern crate std;
 
 pub mod bounds;
+mod compiled;
 pub mod config;
 pub mod constraint;
 pub mod controller;

@@ -94,6 +94,8 @@ impl<T: Real> SkewedLaw<T> {
         feedback.validate()?;
         let mut k_p = T::zero();
         if let Some(sk) = skew {
+            crate::compiled::skew(&sk.kind)?;
+            crate::compiled::transition(sk.transition)?;
             sk.validate()?;
             if let SkewKind::Nonsingular { k_pp } = sk.kind {
                 k_p = k_pp * (sk.eps_s - feedback.eval(sk.eps_z)) / sk.eps_z;
@@ -133,15 +135,17 @@ impl<T: Real> SkewedLaw<T> {
     /// `h_m(s)`.
     #[inline]
     pub fn eval(&self, s: T) -> T {
-        match self.skew {
-            None => self.feedback.eval(s),
-            Some(sk) => self.eval_skewed(sk, s),
+        #[cfg(feature = "skew")]
+        if let Some(sk) = self.skew {
+            return self.eval_skewed(sk, s);
         }
+        self.feedback.eval(s)
     }
 
     /// [`SkewedLaw::eval`] with the skew `sk`: out of line, with its
     /// transition inlined (measured: cheaper than the call inside, and the
     /// unskewed law does not carry the larger body).
+    #[cfg(feature = "skew")]
     #[inline(never)]
     fn eval_skewed(&self, sk: Skew<T>, s: T) -> T {
         let two = T::from_f64(2.0);
@@ -166,7 +170,8 @@ impl<T: Real> SkewedLaw<T> {
     /// `h_m(s(t))` with its time derivatives.
     #[inline]
     pub fn eval_jet<const K: usize>(&self, s: Jet<T, K>) -> Jet<T, K> {
-        let Some(sk) = self.skew else {
+        // Compiled out (src/compiled.rs): no law holds a skew.
+        let (true, Some(sk)) = (cfg!(feature = "skew"), self.skew) else {
             return self.feedback.eval_jet(s);
         };
         let two = T::from_f64(2.0);

@@ -89,6 +89,7 @@ impl Transition {
 
     /// [`Transition::double_ended`], always inlined: for the skew's hot
     /// call, where the call's overhead exceeds the transition's.
+    #[cfg_attr(not(feature = "skew"), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn double_ended_inline<T: Real>(self, z: T) -> T {
         if z <= T::zero() {
@@ -122,10 +123,14 @@ impl Transition {
             Transition::Quintic => {
                 z * z * z * (z * (z * T::from_f64(6.0) - T::from_f64(15.0)) + T::from_f64(10.0))
             }
+            #[cfg(feature = "sine")]
             Transition::Sine => {
                 let s = (T::FRAC_PI_2() * z).sin_octant();
                 s * s
             }
+            // Compiled out (src/compiled.rs): no configuration holds it.
+            #[cfg(not(feature = "sine"))]
+            Transition::Sine => T::nan(),
         }
     }
 
@@ -174,10 +179,13 @@ impl Transition {
             Transition::Quintic => {
                 z * z * z * (z * (z * T::from_f64(6.0) - T::from_f64(15.0)) + T::from_f64(10.0))
             }
+            #[cfg(feature = "sine")]
             Transition::Sine => {
                 let (s, _) = (z * T::FRAC_PI_2()).sin_cos_octant();
                 s * s
             }
+            #[cfg(not(feature = "sine"))]
+            Transition::Sine => Jet::constant(T::nan()),
         }
     }
 

@@ -311,6 +311,7 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         }
         scale(self.k0, "k0")?;
         self.constraint.validate(N)?;
+        crate::compiled::transition(self.transition)?;
         let rho_e = match self.rho_e {
             Margin::Default => Some(self.constraint.default_rho_e()),
             Margin::Given(r) => r,

@@ -137,6 +137,7 @@ impl<T: Real> Constraint<T> {
 
     /// Checks the final widths and that the type exists at `order`.
     pub(crate) fn validate(&self, order: usize) -> Result<(), ConfigError> {
+        crate::compiled::constraint(self)?;
         match *self {
             Constraint::Longitudinal { eps } | Constraint::Lateral { eps } => positive(eps, "eps")?,
             Constraint::Oblique { eps_x, eps_y } => {
@@ -224,6 +225,7 @@ impl<T: Real> Constraint<T> {
                 let y_u = env.y.at(t);
                 finish(m.s(), y_u, y_u, (T::zero(), y_u), flexible)
             }
+            #[cfg(feature = "lateral")]
             (Constraint::Lateral { .. }, Some(law)) => {
                 let sigma = offset::lateral(law, m.s_prev, m.ds_prev).sigma;
                 if let Some((rule, k0)) = latch {
@@ -232,6 +234,7 @@ impl<T: Real> Constraint<T> {
                 let x_u = env.x.at(t);
                 finish(sigma, x_u, x_u, (x_u, T::zero()), flexible)
             }
+            #[cfg(feature = "oblique")]
             (Constraint::Oblique { .. }, Some(law)) => {
                 if let Some((rule, k0)) = latch {
                     let s_x0 = offset::lateral(law, m.s_prev, m.ds_prev).sigma;
@@ -241,6 +244,9 @@ impl<T: Real> Constraint<T> {
                 let sigma = self.offset(law, m.s_prev, m.ds_prev, x_u, y_u).sigma;
                 finish(sigma, x_u, half_width(x_u, y_u), (x_u, y_u), flexible)
             }
+            // Compiled out (src/compiled.rs): no configuration holds it.
+            #[allow(unreachable_patterns)]
+            _ => finish(T::nan(), T::one(), T::one(), (T::zero(), T::zero()), None),
         }
     }
 }
@@ -281,6 +287,7 @@ fn finish<T: Real>(
 
 /// `d_U = sqrt(x_U^2 + y_U^2)`, scaled when the squares would overflow
 /// (latched widths far out of the usual range).
+#[cfg_attr(not(feature = "oblique"), allow(dead_code))]
 #[inline(always)]
 fn half_width<T: Real>(x_u: T, y_u: T) -> T {
     let d = (x_u * x_u + y_u * y_u).root();

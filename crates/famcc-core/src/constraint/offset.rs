@@ -51,7 +51,17 @@ pub fn inverse<T: Real>(law: &SkewedLaw<T>, y: T) -> T {
             return x;
         }
     }
-    decreasing_root(|x| law.eval(x) - y, initial_guess(law.feedback(), y))
+    // Without the skew and the laws beyond the finite-time one, every law
+    // has a closed form (src/compiled.rs): no search is compiled.
+    if cfg!(any(
+        feature = "skew",
+        feature = "fixed-time",
+        feature = "variable-exponent"
+    )) {
+        decreasing_root(|x| law.eval(x) - y, initial_guess(law.feedback(), y))
+    } else {
+        T::nan()
+    }
 }
 
 /// A starting point for the inverse: the closed-form inverse of the
@@ -64,6 +74,7 @@ fn initial_guess<T: Real>(h: &Feedback<T>, y: T) -> T {
 }
 
 /// The horizontal (LaMC) offset `s_{n-1} - h_v(ds_{n-1})`.
+#[cfg_attr(not(any(feature = "lateral", feature = "oblique")), allow(dead_code))]
 #[inline]
 pub(super) fn lateral<T: Real>(law: &SkewedLaw<T>, s_prev: T, ds_prev: T) -> Offset<T> {
     let x_c = inverse(law, ds_prev);
@@ -100,6 +111,7 @@ impl<T: Real> Constraint<T> {
                 }
             }
             Constraint::Lateral { .. } => lateral(law, s_prev, ds_prev),
+            #[cfg(feature = "oblique")]
             Constraint::Oblique { .. } => {
                 let m = y_u / x_u;
                 // eq. (27): x_U (h(x) - ds) = y_U (x - s_{n-1}); strictly decreasing in x.
@@ -108,6 +120,16 @@ impl<T: Real> Constraint<T> {
                     sigma: s_prev - x_c,
                     x_c,
                     y_c: law.eval(x_c),
+                }
+            }
+            // Compiled out (src/compiled.rs): no configuration holds it.
+            #[cfg(not(feature = "oblique"))]
+            Constraint::Oblique { .. } => {
+                let _ = (x_u, y_u);
+                Offset {
+                    sigma: T::nan(),
+                    x_c: T::nan(),
+                    y_c: T::nan(),
                 }
             }
         }

@@ -1,0 +1,73 @@
+//! Which designs this build compiles (Cargo features).
+//!
+//! Every law, skew, transition and constraint type is compiled by default
+//! (feature `all`); the features and what each compiles are listed in the
+//! crate documentation ("Cargo features"). A variant compiled out costs no
+//! flash: every function's arm for it is gone, and these checks make
+//! [`crate::ConfigBuilder::build`] reject it with a [`ConfigError`] that
+//! names the feature (tests/compiled_out.rs).
+
+use crate::error::ConfigError;
+use crate::{Constraint, Feedback, SkewKind, Transition};
+
+/// `Err` naming the feature when `parameter`'s variant is compiled out.
+const fn require(compiled: bool, parameter: &'static str, rule: &'static str) -> Result<(), ConfigError> {
+    if compiled {
+        Ok(())
+    } else {
+        Err(ConfigError::new(parameter, rule))
+    }
+}
+
+/// Checks that the law `h` is compiled into this build.
+pub(crate) fn law<T>(h: &Feedback<T>) -> Result<(), ConfigError> {
+    match h {
+        Feedback::Linear { .. } | Feedback::FiniteTime { .. } => Ok(()),
+        Feedback::FixedTime { .. } => require(
+            cfg!(feature = "fixed-time"),
+            "law",
+            "fixed-time is compiled out of this build: enable famcc-core's Cargo feature `fixed-time`",
+        ),
+        Feedback::VariableExponent { .. } | Feedback::MoulayDiscontinuous { .. } => require(
+            cfg!(feature = "variable-exponent"),
+            "law",
+            "variable-exponent is compiled out of this build: enable famcc-core's Cargo feature \
+             `variable-exponent`",
+        ),
+    }
+}
+
+/// Checks that a skew of `kind` is compiled into this build.
+pub(crate) fn skew<T>(_kind: &SkewKind<T>) -> Result<(), ConfigError> {
+    require(
+        cfg!(feature = "skew"),
+        "skew",
+        "is compiled out of this build: enable famcc-core's Cargo feature `skew`",
+    )
+}
+
+/// Checks that the transition `t` is compiled into this build.
+pub(crate) fn transition(t: Transition) -> Result<(), ConfigError> {
+    require(
+        cfg!(feature = "sine") || t != Transition::Sine,
+        "transition",
+        "sine is compiled out of this build: enable famcc-core's Cargo feature `sine`",
+    )
+}
+
+/// Checks that the constraint type `c` is compiled into this build.
+pub(crate) fn constraint<T>(c: &Constraint<T>) -> Result<(), ConfigError> {
+    match c {
+        Constraint::Longitudinal { .. } => Ok(()),
+        Constraint::Lateral { .. } => require(
+            cfg!(feature = "lateral"),
+            "constraint",
+            "lateral is compiled out of this build: enable famcc-core's Cargo feature `lateral`",
+        ),
+        Constraint::Oblique { .. } => require(
+            cfg!(feature = "oblique"),
+            "constraint",
+            "oblique is compiled out of this build: enable famcc-core's Cargo feature `oblique`",
+        ),
+    }
+}
