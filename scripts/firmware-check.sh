@@ -14,9 +14,8 @@
 #     the C example on the host and, linked against the
 #     thumbv7em staticlib, in QEMU
 #
-# Exit status: non-zero on any functional failure (a build, a check, a
-# comparison). Missed performance targets are printed as WARNING/MISSED and
-# do not fail the script.
+# Exit status: non-zero on any failure: a build, a check, a comparison, or a
+# target (instructions per step, flash) missed or not measured.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -312,16 +311,8 @@ fi
 
 # ---------------------------------------------------------------- summary
 phase "summary"
-target() { # name, value, limit
-    if [ -z "$2" ]; then
-        warn "$1: not measured"
-    elif awk -v v="$2" -v l="$3" 'BEGIN { exit !(v <= l) }'; then
-        echo "  met     $1: $2 <= $3"
-    else
-        echo "  MISSED  $1: $2 > $3"
-        WARNINGS+=("MISSED $1: $2 > $3")
-    fi
-}
+# target NAME VALUE LIMIT: met, or a failure (missed, or not measured).
+source "$ROOT/scripts/fw_target.sh"
 target "instructions/step, order 2" "${INSN[2]:-}" $TARGET_INSN_O2
 target "instructions/step, order 3" "${INSN[3]:-}" $TARGET_INSN_O3
 target "controller flash, order 2 (new + step), bytes" "${TEXT[2]:-}" $TARGET_TEXT

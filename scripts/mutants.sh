@@ -4,7 +4,7 @@
 #
 #   scripts/mutants.sh               the seeded slice that ./scripts/test.sh runs: the
 #                                    round-robin shard MUTANTS_SEED % MUTANTS_SHARDS of
-#                                    MUTANTS_SHARDS of famcc-core's mutants (~6;
+#                                    MUTANTS_SHARDS of famcc-core's mutants (~4;
 #                                    MUTANTS_OUT names the report directory)
 #   scripts/mutants.sh --diff [BASE] the famcc-core mutants in the lines changed
 #                                    against BASE (default: main), as before a merge
@@ -80,7 +80,7 @@ core() { # out-dir, args... -> cargo mutants on famcc-core
 case "$mode" in
 slice)
     seed=${MUTANTS_SEED:-11}
-    shards=${MUTANTS_SHARDS:-480}
+    shards=${MUTANTS_SHARDS:-720}
     out=target/mutants/${MUTANTS_OUT:-slice}/mutants.out
     echo "mutation slice: famcc-core, round-robin shard $((seed % shards)) of $shards" \
         "(MUTANTS_SEED=$seed, MUTANTS_SHARDS=$shards)"

@@ -52,15 +52,17 @@ mark "venv, install (pip; the extension's release build)"
 # fmt, clippy and rustdoc over the three workspaces: the root (core, paper,
 # binding), the C ABI and the firmware keep workspaces of their own
 # (docs/design.md §9.1: their panic = "abort" profiles and features).
+# The firmware's workspace with --all-features: its size probes (features
+# ex1, ex3) are linted too.
 for manifest in Cargo.toml crates/famcc-ffi/Cargo.toml embedded/Cargo.toml; do
+    all=()
+    [ "$manifest" = embedded/Cargo.toml ] && all=(--all-features)
     cargo fmt --all --manifest-path "$manifest" -- --check
-    cargo clippy --manifest-path "$manifest" --workspace --all-targets -- -D warnings
+    cargo clippy --manifest-path "$manifest" --workspace --all-targets "${all[@]}" -- -D warnings
     RUSTDOCFLAGS="-D warnings" cargo doc --manifest-path "$manifest" --workspace --no-deps --quiet
 done
-# famcc-core with every optional design compiled out (src/compiled.rs), and
-# the firmware's size probes, which compile one design each.
-cargo clippy -p famcc-core --no-default-features --lib --tests -- -D warnings
-cargo clippy --manifest-path embedded/Cargo.toml --workspace --all-targets --all-features -- -D warnings
+# famcc-core with every optional design and option compiled out (src/compiled.rs).
+cargo clippy -p famcc-core --no-default-features --lib --test compiled_out -- -D warnings
 mark "fmt, clippy, rustdoc (3 workspaces)"
 cargo test -p famcc-core -p famcc-paper
 # Every benchmark workload builds its controller and steps once (criterion's
@@ -73,7 +75,7 @@ cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 mark "Rust tests (core, paper, benches, no_std, C ABI)"
-# Mutation testing: a fixed, seeded slice of famcc-core's mutants (~6, ~4
+# Mutation testing: a fixed, seeded slice of famcc-core's mutants (~4, ~3
 # minutes; docs/mutation.md). A mutant that survives and is not triaged in
 # .cargo/mutants-equivalent.txt fails here. `scripts/mutants.sh --full` runs all.
 bash scripts/mutants.sh

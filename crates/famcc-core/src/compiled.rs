@@ -71,3 +71,46 @@ pub(crate) fn constraint<T>(c: &Constraint<T>) -> Result<(), ConfigError> {
         ),
     }
 }
+
+/// Checks that the run-time options a configuration sets are compiled into
+/// this build: the bumpless start (`initial_output`) and integral action.
+pub(crate) fn options(initial_output: bool, integral: bool) -> Result<(), ConfigError> {
+    require(
+        !initial_output || cfg!(feature = "bumpless"),
+        "initial_output",
+        "(the bumpless start) is compiled out of this build: enable famcc-core's Cargo feature `bumpless`",
+    )?;
+    require(
+        !integral || cfg!(feature = "integral"),
+        "integral",
+        "(integral action) is compiled out of this build: enable famcc-core's Cargo feature `integral`",
+    )
+}
+
+/// True when a step (or a restored state) may take the period `dt`, the
+/// nominal period being `nominal`: always with one-off periods compiled
+/// (`step_dt`), otherwise only the nominal one.
+#[inline(always)]
+pub(crate) fn period_allowed<T: PartialEq>(dt: T, nominal: T) -> bool {
+    cfg!(feature = "one-off-period") || dt == nominal
+}
+
+/// True when the clock's run goes on at the period `dt`: `dt` is the run's
+/// `period`, or one-off periods are compiled out, so that every step and
+/// every restored state has the nominal period and no run restarts (in
+/// `f64`, soft-float on a single-precision FPU).
+#[inline(always)]
+pub(crate) fn continues_run<T: PartialEq>(dt: T, period: T) -> bool {
+    !cfg!(feature = "one-off-period") || dt == period
+}
+
+/// True when one-off periods are compiled (the step rediscretizes for one).
+pub(crate) const ONE_OFF_PERIOD: bool = cfg!(feature = "one-off-period");
+
+/// The error of a restored state whose period is not the nominal one in a
+/// build without one-off periods.
+pub(crate) const PERIOD_COMPILED_OUT: ConfigError = ConfigError::new(
+    "state.period",
+    "differs from dt, and one-off periods are compiled out of this build: enable famcc-core's Cargo \
+     feature `one-off-period`",
+);

@@ -56,6 +56,9 @@
 //! | `sine` | [`Transition::Sine`] |
 //! | `lateral` | [`Constraint::Lateral`] |
 //! | `oblique` | [`Constraint::Oblique`] |
+//! | `bumpless` | the bumpless start ([`ConfigBuilder::initial_output`]) |
+//! | `integral` | integral action ([`ConfigBuilder::integral`]) |
+//! | `one-off-period` | steps at another period than `dt` ([`Controller::step_dt`]), and restoring a state taken at one; without it the clock never leaves `T` (no soft-float `f64` on a single-precision FPU) |
 #![no_std]
 #![forbid(unsafe_code)]
 #![cfg_attr(

@@ -5,7 +5,7 @@
 //! (everything compiled: every design builds) and
 //! `--no-default-features` (every optional variant rejected).
 
-use famcc_core::{Config, Constraint, Controller, Feedback, Skew, Transition};
+use famcc_core::{Config, Constraint, Controller, Feedback, HighGain, Skew, Transition};
 
 type Stage = (Feedback<f32>, Option<Skew<f32>>);
 
@@ -116,10 +116,48 @@ fn each_optional_variant_builds_exactly_when_its_feature_is_compiled() {
     for (what, feature, built, compiled) in cases {
         check(what, feature, built, compiled);
     }
+    let option = |b: famcc_core::ConfigBuilder<f32, 2>| b.build();
+    let plain = Config::<f32, 2>::builder(1e-3, &[(FINITE, None)], LONGITUDINAL, 5.0);
+    check(
+        "bumpless start",
+        "bumpless",
+        option(plain.initial_output(Some(1.0))),
+        cfg!(feature = "bumpless"),
+    );
+    check(
+        "integral action",
+        "integral",
+        option(plain.integral(true)),
+        cfg!(feature = "integral"),
+    );
     // A sine skew needs both features: without `skew` the skew is named first.
     if cfg!(feature = "skew") {
         let built = build((FINITE, Some(sine_skew)), LONGITUDINAL, exp);
         check("sine skew transition", "sine", built, cfg!(feature = "sine"));
+    }
+}
+
+#[test]
+fn a_one_off_period_steps_exactly_when_its_feature_is_compiled() {
+    let built = Config::<f32, 2>::builder(1e-3, &[(FINITE, None)], LONGITUDINAL, 5.0)
+        .differentiator(Some(HighGain::paper()))
+        .build();
+    let Ok(cfg) = built else {
+        panic!("the always-compiled design was rejected: {built:?}");
+    };
+    let mut c = Controller::new(cfg);
+    // The nominal period through step_dt is always accepted.
+    assert!(c.step_dt(0.5, 1e-3, None).is_ok());
+    let other = c.step_dt(0.5, 2e-3, None);
+    assert_eq!(other.is_ok(), cfg!(feature = "one-off-period"), "{other:?}");
+    // A state taken at another period restores exactly when one-off periods
+    // are compiled (and names the feature otherwise).
+    let mut snap = c.snapshot();
+    snap.period = 2e-3;
+    let restored = Controller::new(cfg).restore(&snap);
+    assert_eq!(restored.is_ok(), cfg!(feature = "one-off-period"), "{restored:?}");
+    if let Err(e) = restored {
+        assert!(e.to_string().contains("Cargo feature `one-off-period`"), "{e}");
     }
 }
 

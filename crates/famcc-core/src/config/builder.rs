@@ -330,6 +330,7 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
                 .at_stage(i));
             }
         }
+        crate::compiled::options(self.initial_output.is_some(), self.integral)?;
         if self.integral && N < 2 {
             return Err(ConfigError::new(
                 "integral",

@@ -209,7 +209,8 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// `Z = (I, e, e', ..., e^(N-2))`, `I` the integral of the measured error,
     /// for a plant of order `N - 1`.
     pub fn integral(&self) -> bool {
-        self.integral
+        // Compiled out (src/compiled.rs): never on, and its code is dead.
+        self.integral && cfg!(feature = "integral")
     }
 
     /// The plant's order: `N`, or `N - 1` with integral action.
@@ -223,7 +224,7 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// `step_state`) is laid out in the law's coordinates: the plant's
     /// `(z1, ..., zn)` in slots `offset..N`.
     pub fn estimate_offset(&self) -> usize {
-        usize::from(self.integral)
+        usize::from(self.integral())
     }
 
     /// The magnitude limits `(lo, hi)` of the output (`step` returns the
@@ -239,7 +240,8 @@ impl<T: Real, const N: usize> Config<T, N> {
 
     /// The output the first step starts from (bumpless start), if any.
     pub fn initial_output(&self) -> Option<T> {
-        self.initial_output
+        // Compiled out (src/compiled.rs): never set, and its code is dead.
+        self.initial_output.filter(|_| cfg!(feature = "bumpless"))
     }
 
     /// True without output limits, a rate limit and integral action: the
@@ -247,7 +249,7 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// (unless the caller tells the applied input).
     #[inline(always)]
     pub fn unlimited(&self) -> bool {
-        self.output_limits.is_none() && self.rate_limit.is_none() && !self.integral
+        self.output_limits.is_none() && self.rate_limit.is_none() && !self.integral()
     }
 
     /// A 52-bit fingerprint of the configuration's values (FNV-1a over

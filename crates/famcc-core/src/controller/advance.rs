@@ -79,13 +79,16 @@ impl<T: Real, const N: usize> Controller<T, N> {
         }
         let dt = match one_off_dt {
             Some(dt) if !(dt.is_finite() && dt > T::zero()) => return Err(StepError::InvalidDt),
+            // Compiled out (src/compiled.rs): the nominal period only.
+            Some(dt) if !crate::compiled::period_allowed(dt, c.dt()) => return Err(StepError::InvalidDt),
             Some(dt) => dt,
             None => c.dt(),
         };
         let settle_time = c.settle_time();
         // This step's discretization (a one-off period is rediscretized).
         let one_off;
-        let hgd = match one_off_dt.and_then(|dt| c.recursion_at(dt)) {
+        let rediscretized = one_off_dt.filter(|_| crate::compiled::ONE_OFF_PERIOD);
+        let hgd = match rediscretized.and_then(|dt| c.recursion_at(dt)) {
             Some(d) => {
                 one_off = d.map_err(|_| StepError::InvalidDt)?;
                 Some(&one_off)

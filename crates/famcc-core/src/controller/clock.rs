@@ -103,7 +103,7 @@ impl<T: Real> Clock<T> {
     #[inline(always)]
     pub fn sample(&self, dt: T, settle_time: T) -> Option<(T, Self)> {
         let t = self.law_time(settle_time);
-        if dt == self.period {
+        if crate::compiled::continues_run(dt, self.period) {
             let next = Self {
                 k: self.k.saturating_add(1),
                 law_settled: t >= settle_time,

@@ -200,6 +200,9 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
             "state.period",
             "must be finite and > 0",
         )?;
+        if !crate::compiled::period_allowed(self.period, c.dt()) {
+            return Err(crate::compiled::PERIOD_COMPILED_OUT);
+        }
         // The differentiator's estimate is kept in range (recover.rs);
         // without one only the integral is carried, the rest is measured.
         let carried = if c.recursion().is_some() {
