@@ -4,13 +4,17 @@
 #
 #   scripts/mutants.sh               the seeded slice that ./scripts/test.sh runs: the
 #                                    round-robin shard MUTANTS_SEED % MUTANTS_SHARDS of
-#                                    MUTANTS_SHARDS of famcc-core's mutants (~4;
+#                                    MUTANTS_SHARDS of famcc-core's mutants (~2;
 #                                    MUTANTS_OUT names the report directory)
 #   scripts/mutants.sh --diff [BASE] the famcc-core mutants in the lines changed
 #                                    against BASE (default: main), as before a merge
 #   scripts/mutants.sh --full        every mutant of famcc-core, then of the C ABI
 #                                    (hours on 2 cores; --shard k/n splits it)
 #   scripts/mutants.sh --ffi         every mutant of the C ABI's own code
+#   scripts/mutants.sh --prebuild    builds what the mutants' builds share (the
+#                                    dependencies, in their build directory), so
+#                                    that the first mutant costs what the others do;
+#                                    ./scripts/test.sh runs it beside its first phases
 #
 # Arguments after the mode go to `cargo mutants` (e.g. --shard 3/8, -j 2).
 # Mutants triaged as equivalent, one a line with a reason, in
@@ -29,7 +33,7 @@ fi
 
 mode=slice
 case "${1:-}" in
---full | --ffi | --slice) mode=${1#--} && shift ;;
+--full | --ffi | --slice | --prebuild) mode=${1#--} && shift ;;
 --diff)
     mode=diff && shift
     base=main
@@ -78,9 +82,15 @@ core() { # out-dir, args... -> cargo mutants on famcc-core
 }
 
 case "$mode" in
+prebuild)
+    # The command cargo-mutants runs for each mutant's build (its log shows it),
+    # on the unmutated tree: the registry dependencies' artifacts do not depend
+    # on the tree's path, so the copies' builds find them here.
+    cargo test --no-run --package=famcc-core@0.1.0 "${all_tests[@]/--cargo-arg=/}" "$@"
+    ;;
 slice)
     seed=${MUTANTS_SEED:-11}
-    shards=${MUTANTS_SHARDS:-720}
+    shards=${MUTANTS_SHARDS:-1440}
     out=target/mutants/${MUTANTS_OUT:-slice}/mutants.out
     echo "mutation slice: famcc-core, round-robin shard $((seed % shards)) of $shards" \
         "(MUTANTS_SEED=$seed, MUTANTS_SHARDS=$shards)"
