@@ -11,10 +11,6 @@
 #   scripts/mutants.sh --full        every mutant of famcc-core, then of the C ABI
 #                                    (hours on 2 cores; --shard k/n splits it)
 #   scripts/mutants.sh --ffi         every mutant of the C ABI's own code
-#   scripts/mutants.sh --prebuild    builds what the mutants' builds share (the
-#                                    dependencies, in their build directory), so
-#                                    that the first mutant costs what the others do;
-#                                    ./scripts/test.sh runs it beside its first phases
 #
 # Arguments after the mode go to `cargo mutants` (e.g. --shard 3/8, -j 2).
 # Mutants triaged as equivalent, one a line with a reason, in
@@ -33,7 +29,7 @@ fi
 
 mode=slice
 case "${1:-}" in
---full | --ffi | --slice | --prebuild) mode=${1#--} && shift ;;
+--full | --ffi | --slice) mode=${1#--} && shift ;;
 --diff)
     mode=diff && shift
     base=main
@@ -82,12 +78,6 @@ core() { # out-dir, args... -> cargo mutants on famcc-core
 }
 
 case "$mode" in
-prebuild)
-    # The command cargo-mutants runs for each mutant's build (its log shows it),
-    # on the unmutated tree: the registry dependencies' artifacts do not depend
-    # on the tree's path, so the copies' builds find them here.
-    cargo test --no-run --package=famcc-core@0.1.0 "${all_tests[@]/--cargo-arg=/}" "$@"
-    ;;
 slice)
     seed=${MUTANTS_SEED:-11}
     shards=${MUTANTS_SHARDS:-1440}

@@ -47,16 +47,16 @@ mark() {
     T_LAST=$SECONDS
 }
 
-# The mutation slice's shared build (its dependencies, in its own build
-# directory; cargo-mutants itself on a machine without it) runs beside the
-# first phases, which leave a core idle: the extension's fat-LTO link and
-# pip's downloads run on one core.
-mkdir -p target/mutants
-bash scripts/mutants.sh --prebuild >target/mutants/prebuild.log 2>&1 &
-PREBUILD=$!
-trap 'kill "$PREBUILD" 2>/dev/null || true' EXIT
-"$PY" -m pip install --quiet --disable-pip-version-check -e '.[test,docs,cluster]'
-mark "venv, install (pip; the extension's release build)"
+# The Python install runs beside the Rust checks and tests: pip's downloads
+# and the extension's fat-LTO link keep one core busy, cargo's jobs the other.
+# The extension builds in a build directory of its own (target/python-build),
+# so that neither build waits for the other's lock.
+mkdir -p target
+CARGO_TARGET_DIR="$PWD/target/python-build" "$PY" -m pip install --quiet --disable-pip-version-check \
+    -e '.[test,docs,cluster]' >target/pip-install.log 2>&1 &
+PIP_INSTALL=$!
+BACKGROUND=("$PIP_INSTALL")
+trap 'kill "${BACKGROUND[@]}" 2>/dev/null || true' EXIT
 # fmt, clippy and rustdoc over the three workspaces: the root (core, paper,
 # binding), the C ABI and the firmware keep workspaces of their own
 # (docs/design.md §9.1: their panic = "abort" profiles and features).
@@ -83,16 +83,13 @@ cargo build -p famcc-core -p famcc-paper
 # The C ABI (its own workspace: a no_std staticlib with panic = "abort").
 cargo test --manifest-path crates/famcc-ffi/Cargo.toml --lib
 mark "Rust tests (core, paper, benches, no_std, C ABI)"
-# Mutation testing: a fixed, seeded slice of famcc-core's mutants (~2, ~2
-# minutes; docs/mutation.md). A mutant that survives and is not triaged in
-# .cargo/mutants-equivalent.txt fails here. `scripts/mutants.sh --full` runs all.
-if ! wait "$PREBUILD"; then
-    # Not fatal: each mutant's build repeats it; the slice then reports any error.
-    echo "warning: the mutation slice's prebuild failed (target/mutants/prebuild.log):"
-    tail -5 target/mutants/prebuild.log
+if ! wait "$PIP_INSTALL"; then
+    cat target/pip-install.log
+    echo "error: pip install -e '.[test,docs,cluster]' failed (above)" >&2
+    exit 1
 fi
-bash scripts/mutants.sh
-mark "cargo-mutants slice"
+cat target/pip-install.log
+mark "venv, install (pip, the extension's release build; beside the Rust phases, the wait after them)"
 "$PY" -m ruff check python tests benches examples
 "$PY" -m ruff format --check python tests benches examples
 "$PY" -m mypy --strict python/famcc
@@ -102,12 +99,28 @@ mark "cargo-mutants slice"
 # The examples in the package's docstrings.
 "$PY" -m pytest -q --doctest-modules python/famcc
 mark "ruff, mypy, pytest, doctests"
-# Mutation testing of the Python package: a fixed, seeded slice of cosmic-ray's
-# mutants of the verdict and metric code (5, 1-2 minutes; docs/mutation.md,
-# "Python"), each against its module's tests. A mutant that survives and is not
-# triaged in .mutants-py-equivalent.txt fails here. `scripts/mutants-py.sh --full` runs all.
+# Mutation testing, the two slices side by side (cosmic-ray runs one pytest at
+# a time, so cargo-mutants' builds take the other core):
+#  - famcc-core: a fixed, seeded slice of cargo-mutants' mutants (~2, ~3 minutes;
+#    docs/mutation.md). `scripts/mutants.sh --full` runs all.
+#  - the Python package: a fixed, seeded slice of cosmic-ray's mutants of the
+#    verdict and metric code (5, 1-2 minutes; docs/mutation.md, "Python"), each
+#    against its module's tests. `scripts/mutants-py.sh --full` runs all.
+# A mutant that survives and is not triaged (.cargo/mutants-equivalent.txt,
+# .mutants-py-equivalent.txt) fails here.
+mkdir -p target/mutants
+bash scripts/mutants.sh >target/mutants/slice.log 2>&1 &
+MUTANTS_RS=$!
+BACKGROUND+=("$MUTANTS_RS")
 bash scripts/mutants-py.sh
-mark "cosmic-ray slice"
+mutants_rc=0
+wait "$MUTANTS_RS" || mutants_rc=$?
+grep -vE "^\s+(Compiling|Finished|Running|Fresh|Dirty)" target/mutants/slice.log
+if [ "$mutants_rc" -ne 0 ]; then
+    echo "error: the famcc-core mutation slice failed (above; target/mutants/slice.log)" >&2
+    exit "$mutants_rc"
+fi
+mark "mutation slices (cargo-mutants beside cosmic-ray)"
 # The documentation site (mkdocs.yml): any warning, a broken link among them, fails.
 NO_MKDOCS_2_WARNING=1 "$PY" -m mkdocs build --strict --site-dir target/docs-site
 echo "mkdocs build --strict: OK (target/docs-site)"
