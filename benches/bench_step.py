@@ -84,6 +84,9 @@ TARGETS = {
     "vs_simple_pid": 10.0,  # >= 10x faster than simple-pid
     "vs_reference": 15.0,  # >= 15x faster than the pure-Python reference
     "bank_1e5_steps_per_s": 10e6,
+    # issue 16: example 1 (finite-time, order 2), settled
+    "ex1_settled_ns": 65.0,  # step() <= 65 ns median
+    "ex1_settled_vs_simple_pid": 11.0,  # >= 11x simple-pid in the same process
 }
 
 
@@ -661,6 +664,19 @@ def analyse(cands, banks, native, native_src, clock):
             all(r["pid_ratio"] >= TARGETS["vs_simple_pid"] for r in fam),
             ", ".join(f"{r['design']}/{r['phase']} {r['pid_ratio']:.1f}x" for r in fam),
         )
+    ex1 = [r for r in fam if r["design"] == "finite-time" and r["phase"] == "settled"]
+    if ex1:
+        verdict(
+            "example 1 settled step <= 65 ns (issue 16)",
+            ex1[0]["median"] <= TARGETS["ex1_settled_ns"],
+            f"{ex1[0]['median']:.1f} ns",
+        )
+        if pid is not None:
+            verdict(
+                "example 1 settled >= 11x simple-pid (issue 16)",
+                ex1[0]["pid_ratio"] >= TARGETS["ex1_settled_vs_simple_pid"],
+                f"{ex1[0]['pid_ratio']:.1f}x",
+            )
     verdict(
         ">= 15x faster than the pure-Python reference",
         all(r["ref_ratio"] >= TARGETS["vs_reference"] for r in fam),
