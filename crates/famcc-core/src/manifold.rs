@@ -183,69 +183,73 @@ fn full_stages<T: Real, const N: usize>(
     out
 }
 
-#[cfg(all(test, feature = "fixed-time", feature = "skew"))]
+#[cfg(test)]
 mod tests {
-    use super::{evaluate, evaluate_prev, full_stages, Manifold};
-    use crate::{Feedback, Skew, SkewedLaw};
+    // The laws below need these features (src/compiled.rs).
+    #[cfg(all(feature = "fixed-time", feature = "skew"))]
+    mod shrinking {
+        use super::super::{evaluate, evaluate_prev, full_stages, Manifold};
+        use crate::{Feedback, Skew, SkewedLaw};
 
-    fn bits<const N: usize>(m: &Manifold<f64, N>) -> ([u64; N], u64, u64) {
-        (
-            m.stages.map(f64::to_bits),
-            m.s_prev.to_bits(),
-            m.ds_prev.to_bits(),
-        )
-    }
-
-    /// The shrinking chain of orders 4-8 is bit-identical to jets of `N`
-    /// coefficients throughout, for NSMD finite-time, fixed-time and linear
-    /// stages, over errors from 1e-6 to 1e3 and derivatives of both signs.
-    fn check<const N: usize>() {
-        let nsmd = Some(Skew::nonsingular(0.1, 0.1, 0.1));
-        let laws = [
-            SkewedLaw::new(Feedback::FiniteTime { k: 1.5, p: 0.6 }, nsmd).unwrap(),
-            SkewedLaw::new(
-                Feedback::FixedTime {
-                    alpha: 2.0,
-                    p: 0.5,
-                    beta: 1.0,
-                    q: 1.5,
-                },
-                nsmd,
+        fn bits<const N: usize>(m: &Manifold<f64, N>) -> ([u64; N], u64, u64) {
+            (
+                m.stages.map(f64::to_bits),
+                m.s_prev.to_bits(),
+                m.ds_prev.to_bits(),
             )
-            .unwrap(),
-            SkewedLaw::new(Feedback::Linear { k: 3.0 }, None).unwrap(),
-        ];
-        let laws: [SkewedLaw<f64>; 7] = core::array::from_fn(|i| laws[i % 3]);
-        let mut x = 0.123_f64;
-        for _ in 0..500 {
-            let z: [f64; N] = core::array::from_fn(|k| {
-                x = (x * 997.0 + 0.371).fract();
-                let mag = 10f64.powf(9.0 * x - 6.0 + k as f64);
-                if (x * 1e4) as u64 % 2 == 0 {
-                    mag
-                } else {
-                    -mag
-                }
-            });
-            assert_eq!(
-                bits(&evaluate(&z, &laws)),
-                bits(&full_stages(&z, &laws, true)),
-                "{z:?}"
-            );
-            assert_eq!(
-                bits(&evaluate_prev(&z, &laws)),
-                bits(&full_stages(&z, &laws, false)),
-                "{z:?}"
-            );
         }
-    }
 
-    #[test]
-    fn the_shrinking_chain_is_bit_identical_to_full_jets() {
-        check::<4>();
-        check::<5>();
-        check::<6>();
-        check::<7>();
-        check::<8>();
+        /// The shrinking chain of orders 4-8 is bit-identical to jets of `N`
+        /// coefficients throughout, for NSMD finite-time, fixed-time and linear
+        /// stages, over errors from 1e-6 to 1e3 and derivatives of both signs.
+        fn check<const N: usize>() {
+            let nsmd = Some(Skew::nonsingular(0.1, 0.1, 0.1));
+            let laws = [
+                SkewedLaw::new(Feedback::FiniteTime { k: 1.5, p: 0.6 }, nsmd).unwrap(),
+                SkewedLaw::new(
+                    Feedback::FixedTime {
+                        alpha: 2.0,
+                        p: 0.5,
+                        beta: 1.0,
+                        q: 1.5,
+                    },
+                    nsmd,
+                )
+                .unwrap(),
+                SkewedLaw::new(Feedback::Linear { k: 3.0 }, None).unwrap(),
+            ];
+            let laws: [SkewedLaw<f64>; 7] = core::array::from_fn(|i| laws[i % 3]);
+            let mut x = 0.123_f64;
+            for _ in 0..500 {
+                let z: [f64; N] = core::array::from_fn(|k| {
+                    x = (x * 997.0 + 0.371).fract();
+                    let mag = 10f64.powf(9.0 * x - 6.0 + k as f64);
+                    if (x * 1e4) as u64 % 2 == 0 {
+                        mag
+                    } else {
+                        -mag
+                    }
+                });
+                assert_eq!(
+                    bits(&evaluate(&z, &laws)),
+                    bits(&full_stages(&z, &laws, true)),
+                    "{z:?}"
+                );
+                assert_eq!(
+                    bits(&evaluate_prev(&z, &laws)),
+                    bits(&full_stages(&z, &laws, false)),
+                    "{z:?}"
+                );
+            }
+        }
+
+        #[test]
+        fn the_shrinking_chain_is_bit_identical_to_full_jets() {
+            check::<4>();
+            check::<5>();
+            check::<6>();
+            check::<7>();
+            check::<8>();
+        }
     }
 }
