@@ -22,9 +22,11 @@ fn constant<const N: usize>(out: &mut String, name: &str, what: &str, d: &Discre
     let _ = writeln!(
         out,
         "/// {what}: the differentiator's recursion, computed on the build host.\n\
-         pub const {name}: DiscreteHgd<f32, {N}> = DiscreteHgd {{ phi: [{phi}], gamma: [{}], prefilter: {} }};",
+         pub const {name}: DiscreteHgd<f32, {N}> = DiscreteHgd {{ phi: [{phi}], gamma: [{}], prefilter: {}, \
+         feedthrough: [{}] }};",
         row(&d.gamma),
-        bits(d.prefilter)
+        bits(d.prefilter),
+        row(&d.feedthrough)
     );
 }
 

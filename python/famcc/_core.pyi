@@ -60,7 +60,7 @@ _Scalar: TypeAlias = float | np.floating[Any] | np.integer[Any]
 _ArrayIn: TypeAlias = NDArray[Any] | Sequence[float] | Sequence[Sequence[float]]
 
 _Transition: TypeAlias = Literal["exponential", "cubic", "quintic", "sine"]
-_Discretization: TypeAlias = Literal["exact", "euler", "tustin"]
+_Discretization: TypeAlias = Literal["exact", "euler", "tustin", "foh"]
 _Constraint: TypeAlias = Literal["longitudinal", "lateral", "oblique"]
 _Gamma: TypeAlias = Literal["log", "rational"]
 _Latch: TypeAlias = Literal["paper", "authors"]
@@ -492,10 +492,12 @@ class HighGain:
         The coefficients ``(a1, ..., an)``, one per order (``1..MAX_ORDER``
         entries), all ``> 0``, with ``s^n + a1 s^(n-1) + ... + an`` Hurwitz;
         dimensionless.
-    discretization : {'exact', 'euler', 'tustin'}, default 'exact'
+    discretization : {'exact', 'euler', 'tustin', 'foh'}, default 'exact'
         How the continuous differentiator is discretized for the sample
-        period: 'exact' (zero-order hold), 'euler' (forward) or 'tustin'
-        (bilinear).
+        period: 'exact' (zero-order hold), 'euler' (forward), 'tustin'
+        (bilinear) or 'foh' (first-order hold: the measurement is the
+        straight line through the samples, and the estimate of a sample
+        uses that sample; famcc's choice below 1 kHz, see ``for_rate``).
     limits : sequence of float, default None
         Saturation ``|z_hat_i| <= limit_i`` of the estimates fed to the law,
         one per order, in the unit of each estimate (``z_k`` in the unit of
@@ -568,9 +570,12 @@ class HighGain:
 
         famcc-core's ``HighGain::auto_at``: the paper's differentiator at
         ``dt <= 1 ms`` (up to order 3); at slower rates a faster ``mu`` that
-        keeps the loop's delay (never below ``dt``, the paper's ``mu`` once
-        ``dt > 0.01``); the exact hold up to order 3 while ``dt <= 0.2 mu``,
-        Tustin otherwise.
+        keeps the loop's delay. Up to order 3: the exact hold while
+        ``mu >= 10 dt`` (the paper's: 1 kHz and faster), else the first-order hold
+        ('foh'), whose estimate uses the current sample, with
+        ``mu = 0.01 - (dt - 3 ms) / order`` (at most 0.01, at least
+        ``dt / 2``). From order 4 on Tustin, with
+        ``mu = 0.01 - (3 / order) (dt - 1 ms)`` (at least ``min(dt, 0.01)``).
 
         Parameters
         ----------
@@ -594,7 +599,7 @@ class HighGain:
         >>> import famcc
         >>> h = famcc.HighGain.for_rate(3, 5e-3)   # 200 Hz
         >>> round(h.mu, 6), h.discretization
-        (0.006, 'tustin')
+        (0.009333, 'foh')
         """
     @property
     def mu(self) -> float:
@@ -604,7 +609,7 @@ class HighGain:
         """The coefficients ``(a1, ..., an)``."""
     @property
     def discretization(self) -> _Discretization:
-        """'exact', 'euler' or 'tustin'."""
+        """'exact', 'euler', 'tustin' or 'foh'."""
     @property
     def limits(self) -> tuple[float, ...] | None:
         """The estimates' limits, or None."""

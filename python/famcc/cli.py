@@ -104,7 +104,7 @@ def _parser() -> argparse.ArgumentParser:
             nargs="+",
             choices=sw.DISCRETIZATIONS,
             default=None,
-            help="differentiator discretizations (default: all three)",
+            help=f"differentiator discretizations (default: all {len(sw.DISCRETIZATIONS)})",
         )
         sp.add_argument(
             "--jobs",
@@ -141,7 +141,7 @@ def _parser() -> argparse.ArgumentParser:
     sp = sub.add_parser(
         "sweep",
         help="settling time and max |xi~| against the sample rate",
-        description="Sweep the sample rate (50 Hz - 10 kHz) for the three "
+        description="Sweep the sample rate (50 Hz - 10 kHz) for the four "
         "differentiator discretizations, with and without "
         "estimate limits; writes sweep.md, sweep.json, sweep.png.",
     )

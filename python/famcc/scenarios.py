@@ -132,7 +132,7 @@ class Scenario:
 
         Unless ``differentiator`` is given, the differentiator is the one the
         core's rules pick for ``dt`` (:meth:`famcc.HighGain.for_rate`): the
-        paper's at 1 kHz, a faster ``mu`` with Tustin at slower rates
+        paper's at 1 kHz, the first-order hold at slower rates
         (docs/tuning.md, "Sample rate").
         """
         kw = dict(self.controller_kwargs)

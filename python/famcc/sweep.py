@@ -1,7 +1,7 @@
 """Sample-rate sweep: how slow may the controller be sampled?
 
 For every scenario, sample rate (50 Hz to 10 kHz), differentiator
-discretization (``"exact"``, ``"euler"``, ``"tustin"``) and with or without
+discretization (``"exact"``, ``"euler"``, ``"tustin"``, ``"foh"``) and with or without
 saturation of the estimates fed to the law (``HighGain(..., limits=...)``), one
 closed-loop run of :meth:`famcc.scenarios.Scenario.run` with the scenario's
 differentiator replaced. Each run gets three nested verdicts:
@@ -67,7 +67,7 @@ __all__ = [
 #: Sample rates of the sweep, Hz.
 RATES_HZ = (50, 100, 200, 300, 500, 1000, 2000, 5000, 10000)
 #: The differentiator discretizations compared.
-DISCRETIZATIONS = ("exact", "euler", "tustin")
+DISCRETIZATIONS = ("exact", "euler", "tustin", "foh")
 #: Estimate limits are this many times the initial |z_i| (at least 1).
 LIMIT_FACTOR = 4.0
 #: The rate the sweep asks about, Hz.

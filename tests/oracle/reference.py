@@ -10,9 +10,9 @@ statement of the law (it lives with the tests and is not shipped); it is 50-100 
 Scope: float64, orders 1-3, every feedback law (Linear, FiniteTime, FixedTime,
 VariableExponent, MoulayDiscontinuous), both skews (SSMD, NSMD), the three
 constraint types (LoMC, LaMC, OMC), both Gamma maps, the four transitions, the
-flexible boundary on or off, both latches, the exact/Euler/Tustin
-differentiator with optional estimate limits, initial derivative estimates and
-the ``applied`` argument.
+flexible boundary on or off, both latches, the exact/Euler/Tustin/first-order-hold
+differentiator with optional estimate limits and prefilter, initial derivative
+estimates and the ``applied`` argument.
 
 Discrete-time semantics (docs/design.md §3.2), in the order of ``step(e_k)``:
 
@@ -26,8 +26,18 @@ Discrete-time semantics (docs/design.md §3.2), in the order of ``step(e_k)``:
    ``rho_0 = k0 max(|s_0|, eps)``, ``"authors"``: ``max(k0 |s_0|, eps)``), the
    flexible boundary (eqs. WxyUxyL, Wxi), the clamp ``|xi| <= 1 - 2^-53`` when
    the flexible boundary is off, and ``v = -k_u Gamma(xi)`` (eqs. uT, WuT, uOF);
-3. the estimate advances: ``Zhat_{k+1} = Phi Zhat_k + Gamma e_k`` (eq. HGD,
-   zero-order hold, ``Phi``/``Gamma`` computed at construction).
+3. the estimate advances: ``Zhat_{k+1} = Phi Zhat_k + Gamma f_k`` (eq. HGD,
+   zero-order hold, ``Phi``/``Gamma`` computed at construction; ``f_k`` the
+   sample ``e_k``, or its low-pass value with a prefilter).
+
+With the first-order hold (``discretization="foh"``) the stored vector is
+``W_k`` and step 1 uses ``Zhat_k = W_k + D f_k`` at every step after the first
+(``D`` the feedthrough of this very sample, see :func:`discretize_hgd`; the
+first step's ``Zhat_0`` has none); step 3 stores
+``W_{k+1} = Phi Zhat_k + Gamma_0 f_k`` from the unlimited ``Zhat_k`` (the
+estimate limits only clip what the law sees). ``step_state`` runs the
+differentiator the same way; the restart of the recovery rule advances its seed
+with ``Gamma_0`` and no feedthrough.
 
 A rejected step (non-finite ``e`` or ``applied``, overflow) raises ``ValueError``
 and changes nothing, except an overflow after the first step (the recovery rule
@@ -473,11 +483,15 @@ def _solve(a, b):
     return [row[n:] for row in m]
 
 
-def discretize_hgd(mu: float, a: Sequence[float], dt: float, method: str = "exact"):
-    """``(Phi, Gamma)`` of eq. HGD sampled at ``dt`` as tuples of floats.
+def discretize_hgd(
+    mu: float, a: Sequence[float], dt: float, method: str = "exact", *, feedthrough: bool = False
+):
+    """``(Phi, Gamma)`` of eq. HGD sampled at ``dt`` as tuples of floats, and with
+    ``feedthrough=True`` ``(Phi, Gamma, D)`` (``D`` zeros except for ``"foh"``).
 
     ``method``: ``"exact"`` (zero-order hold, ``Phi = exp(M dt)``), ``"euler"``
-    (``I + M dt``) or ``"tustin"`` (``(I - M dt/2)^-1 (I + M dt/2)``), ``M = A - H C``.
+    (``I + M dt``), ``"tustin"`` (``(I - M dt/2)^-1 (I + M dt/2)``) or ``"foh"``
+    (first-order hold), ``M = A - H C``.
 
     Computed in 60-digit decimal arithmetic, in balanced coordinates
     ``w_i = mu^(i-1) Zhat_i`` over ``tau = dt/mu`` (where ``M0 = A - a C`` has ``O(1)``
@@ -491,6 +505,21 @@ def discretize_hgd(mu: float, a: Sequence[float], dt: float, method: str = "exac
     ``(I - M0 tau/2)^-1 tau a``). Unlike the augmented column, whose entries lose all
     relative accuracy when they are tiny (``dt >> mu``), this keeps every entry of
     ``Gamma`` as accurate as ``Phi``'s first column.
+
+    ``"foh"``: the input is the straight line through the samples,
+    ``e(t_k + s) = e_k + (e_{k+1} - e_k) s/dt``, so
+    ``Zhat_{k+1} = Phi Zhat_k + Gamma_zoh e_k + D (e_{k+1} - e_k)`` with ``Phi`` and
+    ``Gamma_zoh`` those of ``"exact"`` and
+    ``D = (1/dt) integral_0^dt exp(M s) (dt - s) ds H``; the returned ``Gamma`` is
+    ``Gamma_0 = Gamma_zoh - D`` (what multiplies ``e_k``), ``D`` multiplies
+    ``e_{k+1}``. ``D0`` (balanced) is read from the exponential of the augmented
+    ``[[M0, a, 0], [0, 0, 1], [0, 0, 0]] tau``, whose state ``(w, u, v)`` with
+    ``u' = v``, ``v' = 0`` from ``(0, 0, 1)`` is driven by the ramp ``u = s``: its last
+    column's top block is ``integral_0^tau exp(M0 (tau - s)) s ds a = tau D0``
+    (substitute ``s -> tau - s``); the column before it, the unit step's response,
+    must reproduce ``Gamma_zoh`` (checked to 1e-40). ``D`` maps back like ``Gamma``.
+    (The core solves ``M0 D0 = (Gamma_zoh - tau a)/tau`` instead, or sums its series
+    for small ``tau``.)
     """
     with localcontext() as ctx:
         ctx.prec = 60
@@ -511,11 +540,28 @@ def discretize_hgd(mu: float, a: Sequence[float], dt: float, method: str = "exac
             lhs = [[eye[i][j] - half * tau * m0[i][j] for j in range(n)] for i in range(n)]
             rhs = [[eye[i][j] + half * tau * m0[i][j] for j in range(n)] for i in range(n)]
             phi0 = _solve(lhs, rhs)
+        elif method == "foh":
+            phi0 = _expm([[v * tau for v in row] for row in m0])
         else:
-            raise ValueError(f"discretization must be 'exact', 'euler' or 'tustin', got {method!r}")
+            raise ValueError(
+                f"discretization must be 'exact', 'euler', 'tustin' or 'foh', got {method!r}"
+            )
         g0 = [eye[i][0] - phi0[i][0] for i in range(n)]
+        d0 = [zero] * n
+        if method == "foh":
+            aug = [[v * tau for v in row] + [av[i] * tau, zero] for i, row in enumerate(m0)]
+            aug.append([zero] * (n + 1) + [tau])
+            aug.append([zero] * (n + 2))
+            big = _expm(aug)
+            if max(abs(big[i][n] - g0[i]) for i in range(n)) > Decimal("1e-40"):
+                raise ArithmeticError("the augmented exponential disagrees with Gamma_zoh")
+            d0 = [big[i][n + 1] / tau for i in range(n)]
+            g0 = [g - d for g, d in zip(g0, d0)]
         phi = tuple(tuple(float(phi0[i][j] * mu_d ** (j - i)) for j in range(n)) for i in range(n))
         gamma = tuple(float(g0[i] * mu_d ** (-i)) for i in range(n))
+        feed = tuple(float(d0[i] * mu_d ** (-i)) for i in range(n))
+    if feedthrough:
+        return phi, gamma, feed
     return phi, gamma
 
 
@@ -568,8 +614,9 @@ class ReferenceController:
     ``"float64"``); law and skew objects are famcc's (their parameters are read
     once, here). ``step(e, applied=None) -> float`` uses ``math`` only.
 
-    Attributes: ``order``, ``dt``, ``k_u``, ``phi``/``gamma_vec`` (the sampled
-    differentiator), ``xi`` (of the last step), ``diagnostics``, ``time``,
+    Attributes: ``order``, ``dt``, ``k_u``, ``phi``/``gamma_vec``/``feedthrough``
+    (the sampled differentiator; ``feedthrough`` is ``D`` of the first-order hold,
+    else None), ``xi`` (of the last step), ``diagnostics``, ``time``,
     ``estimate``.
     """
 
@@ -658,6 +705,7 @@ class ReferenceController:
         self.prefilter_gain = 1.0
         if differentiator == "auto":
             differentiator = None if order == 1 else ("auto",)
+        self.feedthrough = None
         if differentiator is None:
             self.phi = self.gamma_vec = None
         else:
@@ -674,7 +722,9 @@ class ReferenceController:
                     self.prefilter_gain = -math.expm1(-dt / tau)
             if len(a) != order:
                 raise ValueError(f"differentiator.a must have {order} coefficients")
-            self.phi, self.gamma_vec = discretize_hgd(mu, a, dt, method)
+            self.phi, self.gamma_vec, feed = discretize_hgd(mu, a, dt, method, feedthrough=True)
+            if method == "foh":
+                self.feedthrough = feed
         if initial_derivatives is not None:
             d = [float(x) for x in initial_derivatives]
             if len(d) != n:
@@ -718,7 +768,8 @@ class ReferenceController:
 
     @property
     def estimate(self) -> list:
-        """The estimate the next step will use."""
+        """The estimate the next step will use (the stored ``W`` with the
+        first-order hold, before this sample's feedthrough)."""
         return list(self._zhat)
 
     def state(self) -> list:
@@ -899,6 +950,13 @@ class ReferenceController:
             out.append(acc)
         return out
 
+    def _current(self, w: Sequence[float], f: float) -> list:
+        """The estimate of the sample whose differentiator input is ``f`` from the
+        stored ``w``: ``w + D f`` with the first-order hold, else ``w`` itself."""
+        if self.feedthrough is None:
+            return list(w)
+        return [x + d * f for x, d in zip(w, self.feedthrough)]
+
     def step(self, e: float, applied: float | None = None) -> float:
         """One output-feedback step: error sample ``e`` in, control ``v`` out."""
         e = float(e)
@@ -912,7 +970,7 @@ class ReferenceController:
             nxt = [e]
         else:
             if self._started:
-                zhat = self._zhat
+                zhat = self._current(self._zhat, f)
             else:
                 zhat = [e, *self.initial_derivatives]
             nxt = self._advance(zhat, f)
@@ -929,7 +987,7 @@ class ReferenceController:
         if self.phi is None:
             nxt = z
         else:
-            nxt = self._advance(self._zhat if self._started else z, f)
+            nxt = self._advance(self._current(self._zhat, f) if self._started else z, f)
         return self._finish(z, nxt, applied, z, z[0], f)
 
     def _restart(self, seed: list, e: float, law_failed: bool) -> None:

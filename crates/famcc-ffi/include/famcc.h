@@ -144,6 +144,11 @@ enum FamccDiscretization
    * Tustin (bilinear).
    */
   FAMCC_DISCRETIZATION_TUSTIN = 2,
+  /**
+   * First-order (triangle) hold: the estimate of a sample uses that
+   * sample; famcc's choice below 500 Hz up to order 3.
+   */
+  FAMCC_DISCRETIZATION_FOH = 3,
 };
 #ifndef __cplusplus
 typedef uint32_t FamccDiscretization;
@@ -1039,10 +1044,13 @@ typedef struct FamccError {
 } FamccError;
 
 /**
- * A differentiator's recursion `Zhat_{k+1} = Phi Zhat_k + Gamma f_k` for one
- * sample period (famcc-core's `DiscreteHgd`): computed on a host by
- * `*_discretize` and passed to `*_init_discretized` on a target, which then
- * runs no matrix exponential (and links none).
+ * A differentiator's recursion `W_{k+1} = Phi Zhat_k + Gamma f_k`, with the
+ * estimate `Zhat_k = W_k + D f_k` (`D` the feedthrough, zero but for
+ * `FAMCC_DISCRETIZATION_FOH`), for one sample period (famcc-core's
+ * `DiscreteHgd`): computed on a host by `*_discretize` and passed to
+ * `*_init_discretized` on a target, which then runs no matrix exponential
+ * (and links none). `feedthrough` is the last member, so the members
+ * before it keep their offsets.
  */
 typedef struct FamccDiscretized_f32 {
   /**
@@ -1059,6 +1067,12 @@ typedef struct FamccDiscretized_f32 {
    * prefilter.
    */
   float prefilter;
+  /**
+   * The direct feedthrough `D` of the first-order hold
+   * (`FAMCC_DISCRETIZATION_FOH`); zeros for the other discretizations.
+   * The first `order` entries are used.
+   */
+  float feedthrough[FAMCC_MAX_ORDER];
 } FamccDiscretized_f32;
 
 /**
@@ -1197,10 +1211,13 @@ typedef struct FamccO1F64 {
 } FamccO1F64;
 
 /**
- * A differentiator's recursion `Zhat_{k+1} = Phi Zhat_k + Gamma f_k` for one
- * sample period (famcc-core's `DiscreteHgd`): computed on a host by
- * `*_discretize` and passed to `*_init_discretized` on a target, which then
- * runs no matrix exponential (and links none).
+ * A differentiator's recursion `W_{k+1} = Phi Zhat_k + Gamma f_k`, with the
+ * estimate `Zhat_k = W_k + D f_k` (`D` the feedthrough, zero but for
+ * `FAMCC_DISCRETIZATION_FOH`), for one sample period (famcc-core's
+ * `DiscreteHgd`): computed on a host by `*_discretize` and passed to
+ * `*_init_discretized` on a target, which then runs no matrix exponential
+ * (and links none). `feedthrough` is the last member, so the members
+ * before it keep their offsets.
  */
 typedef struct FamccDiscretized_f64 {
   /**
@@ -1217,6 +1234,12 @@ typedef struct FamccDiscretized_f64 {
    * prefilter.
    */
   double prefilter;
+  /**
+   * The direct feedthrough `D` of the first-order hold
+   * (`FAMCC_DISCRETIZATION_FOH`); zeros for the other discretizations.
+   * The first `order` entries are used.
+   */
+  double feedthrough[FAMCC_MAX_ORDER];
 } FamccDiscretized_f64;
 
 /**
@@ -1454,10 +1477,11 @@ FamccStatus famcc_o1_f32_init_sized(struct FamccO1F32 *storage,
  * `famcc_o1_f32_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o1_f32_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o1_f32_init_discretized(struct FamccO1F32 *storage,
                                           const FamccConfigF32 *config,
@@ -1545,10 +1569,11 @@ FamccStatus famcc_o1_f64_init_sized(struct FamccO1F64 *storage,
  * `famcc_o1_f64_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o1_f64_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o1_f64_init_discretized(struct FamccO1F64 *storage,
                                           const FamccConfigF64 *config,
@@ -1636,10 +1661,11 @@ FamccStatus famcc_o2_f32_init_sized(struct FamccO2F32 *storage,
  * `famcc_o2_f32_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o2_f32_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o2_f32_init_discretized(struct FamccO2F32 *storage,
                                           const FamccConfigF32 *config,
@@ -1727,10 +1753,11 @@ FamccStatus famcc_o2_f64_init_sized(struct FamccO2F64 *storage,
  * `famcc_o2_f64_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o2_f64_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o2_f64_init_discretized(struct FamccO2F64 *storage,
                                           const FamccConfigF64 *config,
@@ -1818,10 +1845,11 @@ FamccStatus famcc_o3_f32_init_sized(struct FamccO3F32 *storage,
  * `famcc_o3_f32_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o3_f32_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o3_f32_init_discretized(struct FamccO3F32 *storage,
                                           const FamccConfigF32 *config,
@@ -1909,10 +1937,11 @@ FamccStatus famcc_o3_f64_init_sized(struct FamccO3F64 *storage,
  * `famcc_o3_f64_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o3_f64_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o3_f64_init_discretized(struct FamccO3F64 *storage,
                                           const FamccConfigF64 *config,
@@ -2000,10 +2029,11 @@ FamccStatus famcc_o4_f32_init_sized(struct FamccO4F32 *storage,
  * `famcc_o4_f32_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o4_f32_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o4_f32_init_discretized(struct FamccO4F32 *storage,
                                           const FamccConfigF32 *config,
@@ -2091,10 +2121,11 @@ FamccStatus famcc_o4_f64_init_sized(struct FamccO4F64 *storage,
  * `famcc_o4_f64_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o4_f64_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o4_f64_init_discretized(struct FamccO4F64 *storage,
                                           const FamccConfigF64 *config,
@@ -2182,10 +2213,11 @@ FamccStatus famcc_o5_f32_init_sized(struct FamccO5F32 *storage,
  * `famcc_o5_f32_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o5_f32_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o5_f32_init_discretized(struct FamccO5F32 *storage,
                                           const FamccConfigF32 *config,
@@ -2273,10 +2305,11 @@ FamccStatus famcc_o5_f64_init_sized(struct FamccO5F64 *storage,
  * `famcc_o5_f64_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o5_f64_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o5_f64_init_discretized(struct FamccO5F64 *storage,
                                           const FamccConfigF64 *config,
@@ -2364,10 +2397,11 @@ FamccStatus famcc_o6_f32_init_sized(struct FamccO6F32 *storage,
  * `famcc_o6_f32_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o6_f32_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o6_f32_init_discretized(struct FamccO6F32 *storage,
                                           const FamccConfigF32 *config,
@@ -2455,10 +2489,11 @@ FamccStatus famcc_o6_f64_init_sized(struct FamccO6F64 *storage,
  * `famcc_o6_f64_init` with the differentiator's recursion precomputed on a host by
  * `famcc_o6_f64_discretize` for the same configuration: nothing is discretized
  * here, so a firmware that initialises only this way links no matrix
- * exponential. The recursion is checked (finite, prefilter gain in
- * `(0, 1]`, the integral's slot zero, spectral radius below 1; else
- * `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
- * belongs to `config` is the caller's to ensure.
+ * exponential. The recursion is checked (finite `Phi`, `Gamma` and
+ * feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+ * spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+ * parameter `discretized`); that it belongs to `config` is the caller's to
+ * ensure.
  */
 FamccStatus famcc_o6_f64_init_discretized(struct FamccO6F64 *storage,
                                           const FamccConfigF64 *config,

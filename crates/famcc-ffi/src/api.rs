@@ -207,10 +207,11 @@ pub unsafe extern "C" fn famcc_o1_f32_init_sized(
 /// `famcc_o1_f32_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o1_f32_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o1_f32_init_discretized(
     storage: *mut FamccO1F32,
@@ -319,10 +320,11 @@ pub unsafe extern "C" fn famcc_o1_f64_init_sized(
 /// `famcc_o1_f64_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o1_f64_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o1_f64_init_discretized(
     storage: *mut FamccO1F64,
@@ -431,10 +433,11 @@ pub unsafe extern "C" fn famcc_o2_f32_init_sized(
 /// `famcc_o2_f32_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o2_f32_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o2_f32_init_discretized(
     storage: *mut FamccO2F32,
@@ -543,10 +546,11 @@ pub unsafe extern "C" fn famcc_o2_f64_init_sized(
 /// `famcc_o2_f64_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o2_f64_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o2_f64_init_discretized(
     storage: *mut FamccO2F64,
@@ -655,10 +659,11 @@ pub unsafe extern "C" fn famcc_o3_f32_init_sized(
 /// `famcc_o3_f32_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o3_f32_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o3_f32_init_discretized(
     storage: *mut FamccO3F32,
@@ -767,10 +772,11 @@ pub unsafe extern "C" fn famcc_o3_f64_init_sized(
 /// `famcc_o3_f64_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o3_f64_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o3_f64_init_discretized(
     storage: *mut FamccO3F64,
@@ -879,10 +885,11 @@ pub unsafe extern "C" fn famcc_o4_f32_init_sized(
 /// `famcc_o4_f32_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o4_f32_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o4_f32_init_discretized(
     storage: *mut FamccO4F32,
@@ -991,10 +998,11 @@ pub unsafe extern "C" fn famcc_o4_f64_init_sized(
 /// `famcc_o4_f64_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o4_f64_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o4_f64_init_discretized(
     storage: *mut FamccO4F64,
@@ -1103,10 +1111,11 @@ pub unsafe extern "C" fn famcc_o5_f32_init_sized(
 /// `famcc_o5_f32_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o5_f32_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o5_f32_init_discretized(
     storage: *mut FamccO5F32,
@@ -1215,10 +1224,11 @@ pub unsafe extern "C" fn famcc_o5_f64_init_sized(
 /// `famcc_o5_f64_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o5_f64_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o5_f64_init_discretized(
     storage: *mut FamccO5F64,
@@ -1327,10 +1337,11 @@ pub unsafe extern "C" fn famcc_o6_f32_init_sized(
 /// `famcc_o6_f32_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o6_f32_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o6_f32_init_discretized(
     storage: *mut FamccO6F32,
@@ -1439,10 +1450,11 @@ pub unsafe extern "C" fn famcc_o6_f64_init_sized(
 /// `famcc_o6_f64_init` with the differentiator's recursion precomputed on a host by
 /// `famcc_o6_f64_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern "C" fn famcc_o6_f64_init_discretized(
     storage: *mut FamccO6F64,

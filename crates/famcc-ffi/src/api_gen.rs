@@ -168,10 +168,11 @@ pub unsafe extern \"C\" fn {p}_init_sized(
 /// `{p}_init` with the differentiator's recursion precomputed on a host by
 /// `{p}_discretize` for the same configuration: nothing is discretized
 /// here, so a firmware that initialises only this way links no matrix
-/// exponential. The recursion is checked (finite, prefilter gain in
-/// `(0, 1]`, the integral's slot zero, spectral radius below 1; else
-/// `FAMCC_STATUS_INVALID_CONFIG` with parameter `discretized`); that it
-/// belongs to `config` is the caller's to ensure.
+/// exponential. The recursion is checked (finite `Phi`, `Gamma` and
+/// feedthrough, prefilter gain in `(0, 1]`, the integral's slot zero,
+/// spectral radius below 1; else `FAMCC_STATUS_INVALID_CONFIG` with
+/// parameter `discretized`); that it belongs to `config` is the caller's to
+/// ensure.
 #[no_mangle]
 pub unsafe extern \"C\" fn {p}_init_discretized(
     storage: *mut {ty},

@@ -64,10 +64,11 @@ pub(crate) const LATCHES: [(u32, Latch); 2] = [
     (FamccLatch::Paper as u32, Latch::Paper),
     (FamccLatch::Authors as u32, Latch::Authors),
 ];
-pub(crate) const DISCRETIZATIONS: [(u32, Discretization); 3] = [
+pub(crate) const DISCRETIZATIONS: [(u32, Discretization); 4] = [
     (FamccDiscretization::Exact as u32, Discretization::Exact),
     (FamccDiscretization::Euler as u32, Discretization::Euler),
     (FamccDiscretization::Tustin as u32, Discretization::Tustin),
+    (FamccDiscretization::Foh as u32, Discretization::Foh),
 ];
 
 /// The core's value of the C value `v` (errors name `name` and the rule).
@@ -157,38 +158,44 @@ pub(crate) fn to_config_discretized<T: Real, const N: usize>(
     c: &FamccConfig<T>,
     d: &FamccDiscretized<T>,
 ) -> Result<Config<T, N>, ConfigError> {
-    let (phi, gamma) = resized(&d.phi, &d.gamma);
+    let (phi, gamma, feedthrough) = resized(&d.phi, &d.gamma, &d.feedthrough);
     let hgd = DiscreteHgd {
         phi,
         gamma,
         prefilter: d.prefilter,
+        feedthrough,
     };
     to_builder(c)?.build_discretized(hgd)
 }
 
 /// famcc-core's recursion as a C [`FamccDiscretized`] (unused entries zero).
 pub(crate) fn discretized_to_c<T: Real, const N: usize>(d: &DiscreteHgd<T, N>) -> FamccDiscretized<T> {
-    let (phi, gamma) = resized(&d.phi, &d.gamma);
+    let (phi, gamma, feedthrough) = resized(&d.phi, &d.gamma, &d.feedthrough);
     FamccDiscretized {
         phi,
         gamma,
         prefilter: d.prefilter,
+        feedthrough,
     }
 }
 
-/// `Phi` and `Gamma` copied between sizes: the common leading part, the
-/// rest zero.
+/// `Phi`, `Gamma` and the feedthrough copied between sizes: the common
+/// leading part, the rest zero.
 fn resized<T: Real, const A: usize, const B: usize>(
     phi: &[[T; A]; A],
     gamma: &[T; A],
-) -> ([[T; B]; B], [T; B]) {
+    feedthrough: &[T; A],
+) -> ([[T; B]; B], [T; B], [T; B]) {
     let mut p = [[T::zero(); B]; B];
     for (row, src) in p.iter_mut().zip(phi.iter()) {
         row.iter_mut().zip(src.iter()).for_each(|(x, s)| *x = *s);
     }
-    let mut g = [T::zero(); B];
-    g.iter_mut().zip(gamma.iter()).for_each(|(x, s)| *x = *s);
-    (p, g)
+    let vector = |v: &[T; A]| {
+        let mut out = [T::zero(); B];
+        out.iter_mut().zip(v.iter()).for_each(|(x, s)| *x = *s);
+        out
+    };
+    (p, vector(gamma), vector(feedthrough))
 }
 
 /// The builder of a C configuration (every value given, nothing checked yet).

@@ -139,6 +139,8 @@ mod tests_options;
 #[cfg(test)]
 mod tests_discretized;
 #[cfg(test)]
+mod tests_foh;
+#[cfg(test)]
 mod tests_orders;
 
 #[cfg(test)]

@@ -12,7 +12,7 @@ use std::vec::Vec;
 
 /// The C configuration of a famcc-core configuration (the reverse of
 /// `convert::to_config`), so that the designs come from famcc-paper alone.
-fn c_config<T: Real, const N: usize>(cfg: &Config<T, N>) -> FamccConfig<T> {
+pub(super) fn c_config<T: Real, const N: usize>(cfg: &Config<T, N>) -> FamccConfig<T> {
     let mut c = convert::defaults::<T>();
     c.dt = cfg.dt();
     c.settle_time = cfg.settle_time();
@@ -101,11 +101,11 @@ fn c_feedback<T: Real>(f: &Feedback<T>) -> FamccFeedback<T> {
     }
 }
 
-fn rust_example1<T: Real>() -> Controller<T, 2> {
+pub(super) fn rust_example1<T: Real>() -> Controller<T, 2> {
     Controller::new(designs::example1(Variant::Code, T::from_f64(1e-3)).unwrap())
 }
 
-fn rust_example3<T: Real>() -> Controller<T, 3> {
+pub(super) fn rust_example3<T: Real>() -> Controller<T, 3> {
     Controller::new(designs::example3(Variant::Code, T::from_f64(1e-3)).unwrap())
 }
 

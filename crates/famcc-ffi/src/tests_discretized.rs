@@ -84,19 +84,21 @@ macro_rules! precomputed_matches_init {
     };
 }
 
-/// The order-2 `float` functions under short names.
-mod o2_f32 {
-    pub(super) use crate::{
-        famcc_o2_f32_discretize as discretize, famcc_o2_f32_init as init,
-        famcc_o2_f32_init_discretized as init_discretized, famcc_o2_f32_step as step,
+/// The order-2 `float` functions under short names (also for tests_foh.rs).
+pub(super) mod o2_f32 {
+    pub(crate) use crate::{
+        famcc_o2_f32_diagnostics as diagnostics, famcc_o2_f32_discretize as discretize,
+        famcc_o2_f32_init as init, famcc_o2_f32_init_discretized as init_discretized,
+        famcc_o2_f32_reset as reset, famcc_o2_f32_step as step,
     };
 }
 
-/// The order-3 `double` functions under short names.
-mod o3_f64 {
-    pub(super) use crate::{
-        famcc_o3_f64_discretize as discretize, famcc_o3_f64_init as init,
-        famcc_o3_f64_init_discretized as init_discretized, famcc_o3_f64_step as step,
+/// The order-3 `double` functions under short names (also for tests_foh.rs).
+pub(super) mod o3_f64 {
+    pub(crate) use crate::{
+        famcc_o3_f64_diagnostics as diagnostics, famcc_o3_f64_discretize as discretize,
+        famcc_o3_f64_init as init, famcc_o3_f64_init_discretized as init_discretized,
+        famcc_o3_f64_reset as reset, famcc_o3_f64_step as step,
     };
 }
 

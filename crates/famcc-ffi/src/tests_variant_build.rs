@@ -87,6 +87,7 @@ pub(crate) fn core_config<T: Real, const N: usize>(
         FamccDiscretization::Exact => Discretization::Exact,
         FamccDiscretization::Euler => Discretization::Euler,
         FamccDiscretization::Tustin => Discretization::Tustin,
+        FamccDiscretization::Foh => Discretization::Foh,
     };
     let a = if N == 2 { A2 } else { A3 };
     let mut b = Config::<T, N>::builder(f(1e-3), &laws, constraint, f(v.k_u))

@@ -118,7 +118,11 @@ pub(crate) fn variants() -> std::vec::Vec<(usize, Case)> {
                     ));
                 }
             }
-            for discretization in [FamccDiscretization::Euler, FamccDiscretization::Tustin] {
+            for discretization in [
+                FamccDiscretization::Euler,
+                FamccDiscretization::Tustin,
+                FamccDiscretization::Foh,
+            ] {
                 out.push((
                     order,
                     Case {
@@ -132,6 +136,7 @@ pub(crate) fn variants() -> std::vec::Vec<(usize, Case)> {
                 FamccDiscretization::Exact,
                 FamccDiscretization::Euler,
                 FamccDiscretization::Tustin,
+                FamccDiscretization::Foh,
             ] {
                 out.push((
                     order,

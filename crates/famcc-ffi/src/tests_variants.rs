@@ -205,6 +205,7 @@ fn the_variant_table_covers_every_enumeration_value() {
         FamccDiscretization::Exact,
         FamccDiscretization::Euler,
         FamccDiscretization::Tustin,
+        FamccDiscretization::Foh,
     ] {
         assert!(has(&|v| v.discretization == d));
     }

@@ -128,6 +128,9 @@ pub enum FamccDiscretization {
     Euler = 1,
     /// Tustin (bilinear).
     Tustin = 2,
+    /// First-order (triangle) hold: the estimate of a sample uses that
+    /// sample; famcc's choice below 500 Hz up to order 3.
+    Foh = 3,
 }
 
 /// Whether and how the flexible boundaries are on (`FamccConfig.flexible`).
@@ -347,10 +350,13 @@ pub type FamccConfigF32 = FamccConfig<f32>;
 /// `double` configuration.
 pub type FamccConfigF64 = FamccConfig<f64>;
 
-/// A differentiator's recursion `Zhat_{k+1} = Phi Zhat_k + Gamma f_k` for one
-/// sample period (famcc-core's `DiscreteHgd`): computed on a host by
-/// `*_discretize` and passed to `*_init_discretized` on a target, which then
-/// runs no matrix exponential (and links none).
+/// A differentiator's recursion `W_{k+1} = Phi Zhat_k + Gamma f_k`, with the
+/// estimate `Zhat_k = W_k + D f_k` (`D` the feedthrough, zero but for
+/// `FAMCC_DISCRETIZATION_FOH`), for one sample period (famcc-core's
+/// `DiscreteHgd`): computed on a host by `*_discretize` and passed to
+/// `*_init_discretized` on a target, which then runs no matrix exponential
+/// (and links none). `feedthrough` is the last member, so the members
+/// before it keep their offsets.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FamccDiscretized<T> {
@@ -362,6 +368,10 @@ pub struct FamccDiscretized<T> {
     /// The prefilter's gain per period, in `(0, 1]`; exactly 1 without a
     /// prefilter.
     pub prefilter: T,
+    /// The direct feedthrough `D` of the first-order hold
+    /// (`FAMCC_DISCRETIZATION_FOH`); zeros for the other discretizations.
+    /// The first `order` entries are used.
+    pub feedthrough: [T; FAMCC_MAX_ORDER],
 }
 
 /// `float` precomputed recursion.

@@ -2,7 +2,6 @@
 
 use crate::errors::config_err;
 use famcc_core::design::{self, Level, Requirements, Rule};
-use famcc_core::Discretization;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -69,11 +68,7 @@ pub fn design_rules<'py>(
     out.set_item("a", d.a.get(..order).unwrap_or(&[]).to_vec())?;
     out.set_item(
         "discretization",
-        match d.discretization {
-            Discretization::Exact => "exact",
-            Discretization::Euler => "euler",
-            Discretization::Tustin => "tustin",
-        },
+        crate::names::DISCRETIZATION.name(d.discretization),
     )?;
     out.set_item("prefilter", d.prefilter)?;
     out.set_item("lambda", d.lambda)?;

@@ -27,10 +27,12 @@ use pyo3::types::PyTuple;
 ///     The coefficients ``(a1, ..., an)``, one per order (``1..MAX_ORDER``
 ///     entries), all ``> 0``, with ``s^n + a1 s^(n-1) + ... + an`` Hurwitz;
 ///     dimensionless.
-/// discretization : {'exact', 'euler', 'tustin'}, default 'exact'
+/// discretization : {'exact', 'euler', 'tustin', 'foh'}, default 'exact'
 ///     How the continuous differentiator is discretized for the sample
-///     period: 'exact' (zero-order hold), 'euler' (forward) or 'tustin'
-///     (bilinear).
+///     period: 'exact' (zero-order hold), 'euler' (forward), 'tustin'
+///     (bilinear) or 'foh' (first-order hold: the measurement is the
+///     straight line through the samples, and the estimate of a sample
+///     uses that sample; famcc's choice below 1 kHz, see ``for_rate``).
 /// limits : sequence of float, default None
 ///     Saturation ``|z_hat_i| <= limit_i`` of the estimates fed to the law,
 ///     one per order, in the unit of each estimate (``z_k`` in the unit of
@@ -244,9 +246,12 @@ impl HighGain {
     ///
     /// famcc-core's ``HighGain::auto_at``: the paper's differentiator at
     /// ``dt <= 1 ms`` (up to order 3); at slower rates a faster ``mu`` that
-    /// keeps the loop's delay (never below ``dt``, the paper's ``mu`` once
-    /// ``dt > 0.01``); the exact hold up to order 3 while ``dt <= 0.2 mu``,
-    /// Tustin otherwise.
+    /// keeps the loop's delay. Up to order 3: the exact hold while
+    /// ``mu >= 10 dt`` (the paper's: 1 kHz and faster), else the first-order hold
+    /// ('foh'), whose estimate uses the current sample, with
+    /// ``mu = 0.01 - (dt - 3 ms) / order`` (at most 0.01, at least
+    /// ``dt / 2``). From order 4 on Tustin, with
+    /// ``mu = 0.01 - (3 / order) (dt - 1 ms)`` (at least ``min(dt, 0.01)``).
     ///
     /// Parameters
     /// ----------
@@ -270,7 +275,7 @@ impl HighGain {
     /// >>> import famcc
     /// >>> h = famcc.HighGain.for_rate(3, 5e-3)   # 200 Hz
     /// >>> round(h.mu, 6), h.discretization
-    /// (0.006, 'tustin')
+    /// (0.009333, 'foh')
     #[staticmethod]
     #[pyo3(text_signature = "(order, dt)")]
     fn for_rate(order: usize, dt: Num) -> PyResult<Self> {
@@ -297,7 +302,7 @@ impl HighGain {
     fn a<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
         PyTuple::new(py, &self.a)
     }
-    /// 'exact', 'euler' or 'tustin'.
+    /// 'exact', 'euler', 'tustin' or 'foh'.
     #[getter(discretization)]
     fn get_discretization(&self) -> &'static str {
         DISCRETIZATION.name(self.discretization)

@@ -64,6 +64,7 @@ pub const DISCRETIZATION: Names<Discretization> = Names {
         ("exact", Discretization::Exact),
         ("euler", Discretization::Euler),
         ("tustin", Discretization::Tustin),
+        ("foh", Discretization::Foh),
     ],
 };
 

@@ -39,9 +39,9 @@ def sweep_figure(rows: Sequence[dict[str, Any]], title: str = "") -> Figure:
     fig = Figure(figsize=(max(5.0 * ncol, 9.0), 5.2 * nblock + 0.6), dpi=_DPI, layout="constrained")
     FigureCanvasAgg(fig)
     axes = fig.subplots(2 * nblock, ncol, squeeze=False)
-    styles = {"exact": "-", "euler": ":", "tustin": "--"}
-    markers = {"exact": "o", "euler": "^", "tustin": "s"}
-    colors = {"exact": "tab:blue", "euler": "tab:red", "tustin": "tab:green"}
+    styles = {"exact": "-", "euler": ":", "tustin": "--", "foh": "-."}
+    markers = {"exact": "o", "euler": "^", "tustin": "s", "foh": "D"}
+    colors = {"exact": "tab:blue", "euler": "tab:red", "tustin": "tab:green", "foh": "tab:purple"}
     for j, name in enumerate(names):
         ax_t = axes[2 * (j // ncol), j % ncol]
         ax_m = axes[2 * (j // ncol) + 1, j % ncol]

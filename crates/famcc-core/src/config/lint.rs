@@ -51,6 +51,10 @@ pub const LINT_COUNT: usize = 5;
 const MAX_DT_PER_MU: f64 = crate::differentiator::EXACT_DT_PER_MU;
 /// Largest `dt / mu` that does not warn with Tustin (its poles stay >= 0).
 const MAX_DT_PER_MU_TUSTIN: f64 = 1.0;
+/// Largest `dt / mu` that does not warn with the first-order hold: the
+/// smallest `mu / dt` famcc's rate rule gives it
+/// ([`crate::differentiator::FOH_MIN_MU_PER_DT`]).
+const MAX_DT_PER_MU_FOH: f64 = 1.0 / crate::differentiator::FOH_MIN_MU_PER_DT;
 /// Largest chatter amplitude, as a fraction of the accuracy of `s_(n-1)`.
 const CHATTER_FRACTION: f64 = 0.01;
 /// Largest `rho_e / eps` that does not warn.
@@ -242,12 +246,13 @@ impl<T: Real, const N: usize> Config<T, N> {
         let mu = hgd.map(|h| h.mu.to_f64_lossless());
         if let (Some(mu), Some(h)) = (mu, hgd) {
             // Tustin maps the poles -2/mu to (1 - dt/mu) / (1 + dt/mu): it
-            // rings only once dt > mu (famcc's rate rule picks it from dt / mu
-            // > 0.2 on, differentiator::auto_discretization_at).
-            let (limit, rule) = if h.discretization == Discretization::Tustin {
-                (MAX_DT_PER_MU_TUSTIN, "dt / mu <= 1 (Tustin)")
-            } else {
-                (MAX_DT_PER_MU, "dt / mu <= 0.2")
+            // rings only once dt > mu. The first-order hold never rings;
+            // famcc's rate rule gives it mu >= dt / 2 (from dt / mu > 0.2 on,
+            // differentiator::auto_discretization_at).
+            let (limit, rule) = match h.discretization {
+                Discretization::Tustin => (MAX_DT_PER_MU_TUSTIN, "dt / mu <= 1 (Tustin)"),
+                Discretization::Foh => (MAX_DT_PER_MU_FOH, "dt / mu <= 2 (first-order hold)"),
+                _ => (MAX_DT_PER_MU, "dt / mu <= 0.2"),
             };
             if dt / mu > limit {
                 out.push(Finding {
@@ -262,7 +267,13 @@ impl<T: Real, const N: usize> Config<T, N> {
                 });
             }
         }
-        if let Some(f) = self.chatter(dt + mu.unwrap_or(0.0)) {
+        // The loop's delay: a period of sampling and the differentiator's
+        // mu, less the period the first-order hold's estimate saves
+        // (differentiator::SAMPLE_DELAY - FOH_SAMPLE_DELAY).
+        let foh = hgd.is_some_and(|h| h.discretization == Discretization::Foh);
+        let saved = crate::differentiator::SAMPLE_DELAY - crate::differentiator::FOH_SAMPLE_DELAY;
+        let sampling = if foh { dt - saved * dt } else { dt };
+        if let Some(f) = self.chatter(sampling + mu.unwrap_or(0.0)) {
             out.push(f);
         }
         let (ex, ey) = self.constraint().eps();

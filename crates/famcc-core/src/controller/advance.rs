@@ -103,7 +103,10 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let carried = hgd.is_some();
         let (e, mut z, plan) = match measured {
             Measured::Error(e) => match hgd {
-                Some(d) => (e, self.limited(self.current_estimate(e)), Next::Update(d)),
+                Some(d) => {
+                    let z = self.current_estimate(first, e, || d.filter(self.state.filtered, e));
+                    (e, self.limited(z), Next::Update(d))
+                }
                 // Order 1 needs no differentiator: Z = (e) (or (I, e)) is measured.
                 None if !differentiator::needed_at(c.plant_order()) => {
                     let mut z = [e; N];
@@ -127,6 +130,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 let next = match c.recursion() {
                     Some(d) => {
                         let f = d.filter(last, e);
+                        let zhat = if self.state.started { self.held(|| f) } else { zhat };
                         (d.advance(&zhat, f), f)
                     }
                     None => (z, e),
@@ -273,18 +277,45 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 // Only the first step comes before anything started.
                 let last = if first { e } else { self.state.filtered };
                 let f = d.filter(last, e);
-                (d.advance(&self.current_estimate(e), f), f)
+                (d.advance(&self.current_estimate(first, e, || f), f), f)
             }
         }
     }
 
-    /// The estimate for this step: the stored one, or the initial one.
-    #[inline]
-    fn current_estimate(&self, e: T) -> [T; N] {
-        if self.state.started {
-            return self.state.zhat;
+    /// The estimate for this step: the initial one at the first step, else
+    /// the stored one with the first-order hold's feedthrough of this
+    /// sample's differentiator input `f()` ([`Self::held`]).
+    #[inline(always)]
+    fn current_estimate(&self, first: bool, e: T, f: impl FnOnce() -> T) -> [T; N] {
+        if first {
+            return recover::initial_estimate(&self.config, e);
         }
-        recover::initial_estimate(&self.config, e)
+        self.held(f)
+    }
+
+    /// The stored estimate plus the feedthrough `D f()` of the sample's
+    /// differentiator input (first-order hold, [`crate::Discretization::Foh`]),
+    /// under the recursion of the period that just elapsed (the previous
+    /// step's: a one-off period is rediscretized); the stored estimate
+    /// itself, bit for bit and without evaluating `f`, for the other
+    /// discretizations.
+    #[inline(always)]
+    fn held(&self, f: impl FnOnce() -> T) -> [T; N] {
+        let c = &self.config;
+        let w = &self.state.zhat;
+        match c.recursion() {
+            Some(d) if d.has_feedthrough() => {
+                let period = self.state.clock.period;
+                if crate::compiled::continues_run(c.dt(), period) {
+                    return d.current(w, f());
+                }
+                match c.recursion_at(period) {
+                    Some(Ok(r)) => r.current(w, f()),
+                    _ => d.current(w, f()),
+                }
+            }
+            _ => *w,
+        }
     }
 
     /// The estimate after the optional saturation `|z_hat_i| <= limit_i`

@@ -5,7 +5,8 @@
 //! (`y^(n) = G u`), held over each sample; the law is linearized at the
 //! manifold, `u = -(2 k_u / eps_s) s` (log Gamma has slope 2 at 0), and uses
 //! the estimate built from the samples before the current one, as
-//! `Controller::step` does (docs/design.md §3.2).
+//! `Controller::step` does (docs/design.md §3.2), plus the current sample's
+//! feedthrough with the first-order hold.
 
 use super::rules::manifold;
 use super::{Design, MAX_ORDER};
@@ -18,15 +19,46 @@ use num_traits::Float as F;
 const DIM: usize = 2 * MAX_ORDER + 2;
 type Mat = [[f64; DIM]; DIM];
 
-/// `Phi`, `Gamma` of the design's differentiator (order `n`), zero-padded,
-/// and its dimension: `n`, or `n + 1` with the prefilter, whose state is the
-/// last input `f_(k-1)`: with `f_k = a f_(k-1) + b e_k` (`b` the prefilter's
-/// gain, `a = 1 - b`), `Zhat_{k+1} = Phi Zhat_k + a Gamma f_(k-1) + b Gamma e_k`.
-fn hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM], usize), ConfigError> {
-    let (mut phi, mut gamma) = plain_hgd(d, n, dt)?;
+/// The design's differentiator (order `n`) as the loop sees it, zero-padded:
+/// the state recursion `X_{k+1} = Phi X_k + Gamma e_k`, the estimate the law
+/// uses, `Zhat_k = X_k[..n] + tail X_k[n] + direct e_k`, and the state's
+/// dimension `ne`.
+///
+/// The state is the stored estimate `W` (the first-order hold's
+/// `Zhat_k = W_k + D f_k`, `W_{k+1} = Phi_h Zhat_k + Gamma_h f_k`, so
+/// `W_{k+1} = Phi_h W_k + (Phi_h D + Gamma_h) f_k`; `D = 0` for the other
+/// discretizations), and with the prefilter also the last input `f_(k-1)`
+/// (`ne = n + 1`): `f_k = a f_(k-1) + b e_k` (`b` the prefilter's gain,
+/// `a = 1 - b`).
+struct Sampled {
+    phi: Mat,
+    gamma: [f64; DIM],
+    tail: [f64; DIM],
+    direct: [f64; DIM],
+    ne: usize,
+}
+
+fn hgd(d: &Design, n: usize, dt: f64) -> Result<Sampled, ConfigError> {
+    let (mut phi, held, feed) = plain_hgd(d, n, dt)?;
+    // Phi_h D + Gamma_h: the stored estimate's input.
+    let mut gamma = held;
+    for (g, row) in gamma.iter_mut().zip(phi.iter()).take(n) {
+        *g += row
+            .iter()
+            .zip(feed.iter())
+            .take(n)
+            .map(|(p, f)| p * f)
+            .sum::<f64>();
+    }
     let b = prefilter_gain(dt, d.prefilter);
     if b == 1.0 {
-        return Ok((phi, gamma, n));
+        return Ok(Sampled {
+            phi,
+            gamma,
+            tail: [0.0; DIM],
+            direct: feed,
+            ne: n,
+        });
     }
     for (i, row) in phi.iter_mut().enumerate().take(n) {
         if let Some(x) = row.get_mut(n) {
@@ -40,22 +72,33 @@ fn hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM], usize), Config
     if let Some(g) = gamma.get_mut(n) {
         *g = b;
     }
-    Ok((phi, gamma, n + 1))
+    Ok(Sampled {
+        phi,
+        gamma,
+        tail: feed.map(|f| (1.0 - b) * f),
+        direct: feed.map(|f| b * f),
+        ne: n + 1,
+    })
 }
 
-/// `Phi`, `Gamma` of the design's differentiator without its prefilter.
-fn plain_hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM]), ConfigError> {
-    fn pad<const M: usize>(d: &Design, dt: f64) -> Result<(Mat, [f64; DIM]), ConfigError> {
+/// `Phi`, `Gamma` and the feedthrough `D` of the design's differentiator
+/// without its prefilter.
+fn plain_hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM], [f64; DIM]), ConfigError> {
+    fn pad<const M: usize>(d: &Design, dt: f64) -> Result<(Mat, [f64; DIM], [f64; DIM]), ConfigError> {
         let mut a = [0.0; M];
         a.iter_mut().zip(d.a.iter()).for_each(|(x, y)| *x = *y);
         let h = HighGain::<f64, M>::new(d.mu, a, d.discretization).discretize(dt)?;
         let mut phi = [[0.0; DIM]; DIM];
         let mut gamma = [0.0; DIM];
+        let mut feed = [0.0; DIM];
         for (row, src) in phi.iter_mut().zip(h.phi.iter()) {
             row.iter_mut().zip(src.iter()).for_each(|(x, y)| *x = *y);
         }
         gamma.iter_mut().zip(h.gamma.iter()).for_each(|(x, y)| *x = *y);
-        Ok((phi, gamma))
+        feed.iter_mut()
+            .zip(h.feedthrough.iter())
+            .for_each(|(x, y)| *x = *y);
+        Ok((phi, gamma, feed))
     }
     match n {
         1 => pad::<1>(d, dt),
@@ -106,7 +149,8 @@ fn norm(a: &Mat) -> f64 {
 /// with `P = Phi P Phi' + Gamma Gamma'` the estimate's steady covariance
 /// (doubling: `P <- P + A P A'`, `A <- A^2`).
 pub(super) fn noise_gain(d: &Design, n: usize, dt: f64) -> Result<f64, ConfigError> {
-    let (phi, gamma, ne) = hgd(d, n, dt)?;
+    let h = hgd(d, n, dt)?;
+    let (phi, gamma, tail, direct, ne) = (h.phi, h.gamma, h.tail, h.direct, h.ne);
     let mut p = [[0.0; DIM]; DIM];
     for (i, row) in p.iter_mut().enumerate().take(ne) {
         for (j, v) in row.iter_mut().enumerate().take(ne) {
@@ -128,11 +172,19 @@ pub(super) fn noise_gain(d: &Design, n: usize, dt: f64) -> Result<f64, ConfigErr
     let c = manifold(d.law_order, d.lambda);
     let offset = usize::from(d.integral);
     let mut var = 0.0;
+    // Zhat = E X + direct e with E = [I | tail]: Cov = E P E' + direct direct'
+    // (X_k holds only the noise before sample k).
+    let pij = |i: usize, j: usize| p.get(i).and_then(|r| r.get(j)).copied().unwrap_or(0.0);
+    let at = |v: &[f64; DIM], i: usize| v.get(i).copied().unwrap_or(0.0);
+    let cov = |i: usize, j: usize| {
+        let (ti, tj) = (at(&tail, i), at(&tail, j));
+        pij(i, j) + ti * pij(n, j) + tj * pij(i, n) + ti * tj * pij(n, n) + at(&direct, i) * at(&direct, j)
+    };
     for i in 0..n {
         for j in 0..n {
             let ci = c.get(i + offset).copied().unwrap_or(0.0);
             let cj = c.get(j + offset).copied().unwrap_or(0.0);
-            var += ci * cj * p.get(i).and_then(|r| r.get(j)).copied().unwrap_or(0.0);
+            var += ci * cj * cov(i, j);
         }
     }
     if var.is_finite() && var >= 0.0 {
@@ -149,10 +201,11 @@ pub(super) fn noise_gain(d: &Design, n: usize, dt: f64) -> Result<f64, ConfigErr
 /// integral), from `||M^m||^(1/m)` with `m = 2^40` by repeated squaring.
 pub(super) fn loop_radius(d: &Design, n: usize, dt: f64, gain: f64) -> Result<f64, ConfigError> {
     let estimated = n > 1;
-    let (phi, gamma, ne) = if estimated {
-        hgd(d, n, dt)?
-    } else {
-        ([[0.0; DIM]; DIM], [0.0; DIM], 0)
+    let h = if estimated { Some(hgd(d, n, dt)?) } else { None };
+    let zero = [0.0; DIM];
+    let (phi, gamma, tail, direct, ne) = match &h {
+        Some(h) => (h.phi, h.gamma, h.tail, h.direct, h.ne),
+        None => ([[0.0; DIM]; DIM], zero, zero, zero, 0),
     };
     let ni = usize::from(d.integral);
     let dim = n + ne + ni;
@@ -178,7 +231,15 @@ pub(super) fn loop_radius(d: &Design, n: usize, dt: f64, gain: f64) -> Result<f6
         add_law(xi, -k * at(&c, 0));
     }
     for j in 0..n {
-        add_law(if estimated { xe + j } else { xp + j }, -k * at(&c, j + ni));
+        let cj = -k * at(&c, j + ni);
+        add_law(if estimated { xe + j } else { xp + j }, cj);
+        if estimated {
+            // The first-order hold's feedthrough (and the prefilter's state in it).
+            if ne > n {
+                add_law(xe + n, cj * at(&tail, j));
+            }
+            add_law(xp, cj * at(&direct, j));
+        }
     }
     for i in 0..n {
         for j in i..n {

@@ -75,8 +75,9 @@ pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
     for (k, ak) in a.iter_mut().enumerate().take(n) {
         *ak = binomial(n, k + 1) * F::powi(2.0, (k + 1) as i32);
     }
-    // Exact ZOH up to order 3 while dt <= 0.2 mu, Tustin otherwise (reset
-    // whenever mu changes, in `time_scales`).
+    // Exact ZOH up to order 3 while mu >= 10 dt (the paper's ratio), the
+    // first-order hold beyond, Tustin from order 4 on (reset whenever mu
+    // changes, in `time_scales`).
     let discretization = auto_discretization_at(n, req.dt, req.mu_per_dt * req.dt);
     // The phase model counts n_law - 1 stage lags and n_law differentiator lags;
     // beyond a law of order 3 that overcounts (measured: flexible joint and

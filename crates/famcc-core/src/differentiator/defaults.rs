@@ -58,43 +58,59 @@ pub const fn auto_discretization(order: usize) -> Discretization {
     }
 }
 
-/// The ratio `dt / mu` up to which [`auto_discretization_at`] keeps the exact
-/// zero-order hold (at order <= 3): the lint's "dt too coarse for mu" bound
-/// (docs/design.md §3.8). Beyond it the held sample is a poor model of the
-/// measurement and Tustin, which maps the poles `-a/mu` to
-/// `(1 - a dt / 2 mu) / (1 + a dt / 2 mu)`, closes the paper's loops where
-/// the exact hold does not (measured at 200 Hz, docs/tuning.md).
+/// The largest `dt / mu` at which the exact zero-order hold is used without
+/// a lint (docs/design.md §3.8): beyond it the held sample is a poor model
+/// of the measurement.
 pub const EXACT_DT_PER_MU: f64 = 0.2;
 
-/// The delay the sampled law adds to the continuous one, in sample periods:
-/// one period because the output at sample `k` uses the estimate built from
-/// the samples up to `k - 1` (docs/design.md §3.2), and half a period of
-/// zero-order hold.
+/// The paper's `mu / dt` (`mu = 0.01` at 1 kHz): [`auto_discretization_at`]
+/// keeps the paper's exact zero-order hold while `mu >= PAPER_MU_PER_DT dt`,
+/// and takes the first-order hold ([`Discretization::Foh`]) at coarser
+/// sampling, where a held input costs the loop more delay than the paper's
+/// loop was designed with (measured at 500, 200 and 100 Hz, docs/tuning.md).
+pub const PAPER_MU_PER_DT: f64 = 10.0;
+
+/// The delay the sampled law adds to the continuous one, in sample periods,
+/// with a held input (exact ZOH, Tustin, Euler): one period because the
+/// output at sample `k` uses the estimate built from the samples up to
+/// `k - 1` (docs/design.md §3.2), and half a period of zero-order hold.
 pub const SAMPLE_DELAY: f64 = 1.5;
+
+/// [`SAMPLE_DELAY`] with the first-order hold ([`Discretization::Foh`]):
+/// its estimate at sample `k` uses `e_k`, so only the output's half period
+/// of hold is left.
+pub const FOH_SAMPLE_DELAY: f64 = 0.5;
+
+/// The smallest `mu / dt` that [`auto_mu`] gives the first-order hold: its
+/// poles `-2/mu` then sit at `exp(-4)` per period, a differentiator that
+/// forgets within a period (faster would only pass the noise on).
+pub const FOH_MIN_MU_PER_DT: f64 = 0.5;
 
 /// The discretization famcc picks for a differentiator of order `order` and
 /// time constant `mu` (s) sampled every `dt` (s): from order 4 on
 /// [`Discretization::Tustin`] (the exact hold aliases there, §7.2 of
-/// docs/design.md); up to order 3 [`Discretization::Exact`] while `dt <=
-/// EXACT_DT_PER_MU * mu`, Tustin for `EXACT_DT_PER_MU * mu < dt <= mu`,
-/// and the exact hold again beyond (`dt > mu`, where Tustin's poles
-/// `(1 - dt/mu) / (1 + dt/mu)` turn negative and ring; measured on the
-/// paper's example 1 at 50 Hz: exact settles, Tustin never does).
-/// `famcc_core::design` and [`HighGain::auto_at`] both use it.
+/// docs/design.md); up to order 3 [`Discretization::Exact`] while `mu >=
+/// PAPER_MU_PER_DT dt` (the paper's, and its ratio), and the first-order
+/// hold [`Discretization::Foh`] at coarser sampling: its estimate uses the
+/// current sample, which removes the period of delay a held input costs,
+/// and its poles are `exp(-a dt / mu)`, stable and never ringing, however
+/// coarse `dt` is. `famcc_core::design` and [`HighGain::auto_at`] both use it.
 ///
 /// ```
 /// use famcc_core::differentiator::auto_discretization_at;
 /// use famcc_core::Discretization;
 /// assert_eq!(auto_discretization_at(3, 1e-3, 0.01), Discretization::Exact);
-/// assert_eq!(auto_discretization_at(3, 5e-3, 0.01), Discretization::Tustin);
-/// assert_eq!(auto_discretization_at(3, 2e-2, 0.01), Discretization::Exact);
+/// assert_eq!(auto_discretization_at(3, 2e-3, 0.01), Discretization::Foh);
+/// assert_eq!(auto_discretization_at(2, 2e-2, 0.01), Discretization::Foh);
 /// assert_eq!(auto_discretization_at(4, 1e-3, 0.01), Discretization::Tustin);
 /// ```
 pub fn auto_discretization_at(order: usize, dt: f64, mu: f64) -> Discretization {
-    if order <= 3 && (dt <= EXACT_DT_PER_MU * mu || dt > mu) {
+    if order > 3 {
+        Discretization::Tustin
+    } else if mu >= PAPER_MU_PER_DT * dt {
         Discretization::Exact
     } else {
-        Discretization::Tustin
+        Discretization::Foh
     }
 }
 
@@ -103,13 +119,20 @@ pub fn auto_discretization_at(order: usize, dt: f64, mu: f64) -> Discretization 
 /// [`PAPER_MU`] at `dt_ref = PAPER_MU / 10` (1 kHz).
 ///
 /// The loop's gains fix its crossover, so what the differentiator may cost
-/// is a delay: about `order mu / 2` (`order` poles at `-2/mu`) plus
-/// [`SAMPLE_DELAY`] `dt` from the sampling. A slower sample rate keeps that
-/// total by a faster differentiator,
-/// `mu = PAPER_MU - (2 SAMPLE_DELAY / order) (dt - dt_ref)`, never slower
-/// than [`PAPER_MU`] (so `mu = PAPER_MU` for `dt <= dt_ref`) and never
-/// below `min(dt, PAPER_MU)` (below `dt` Tustin maps the poles to negative
-/// reals: ringing; at `dt > PAPER_MU` the paper's `mu` with the exact hold).
+/// is a delay: about `order mu / 2` (`order` poles at `-2/mu`) plus the
+/// sampling's, [`SAMPLE_DELAY`] `dt` with a held input. A slower sample rate
+/// keeps the total at its 1 kHz value by a faster differentiator:
+///
+/// - up to order 3, the paper's [`PAPER_MU`] with its exact hold at
+///   `dt <= dt_ref`; beyond, with the first-order hold's [`FOH_SAMPLE_DELAY`],
+///   `mu = PAPER_MU - (2 / order) (FOH_SAMPLE_DELAY dt - SAMPLE_DELAY dt_ref)`,
+///   never slower than [`PAPER_MU`] and never below
+///   [`FOH_MIN_MU_PER_DT`] `dt`;
+/// - from order 4 on (Tustin), `mu = PAPER_MU - (2 SAMPLE_DELAY / order)
+///   (dt - dt_ref)`, never slower than [`PAPER_MU`] and never below
+///   `min(dt, PAPER_MU)` (below `dt` Tustin maps the poles to negative
+///   reals: ringing).
+///
 /// Measurement noise asks for the opposite (a slower `mu`): that trade is
 /// `famcc_core::design`'s, which sets the loop from `mu`.
 ///
@@ -117,18 +140,34 @@ pub fn auto_discretization_at(order: usize, dt: f64, mu: f64) -> Discretization 
 /// use famcc_core::differentiator::{auto_mu, PAPER_MU};
 /// assert_eq!(auto_mu(3, 1e-3), PAPER_MU);
 /// assert_eq!(auto_mu(2, 1e-4), PAPER_MU);
-/// assert!((auto_mu(3, 5e-3) - 0.006).abs() < 1e-12);
-/// assert!((auto_mu(2, 5e-3) - 0.005).abs() < 1e-12); // 0.004, raised to dt
-/// assert_eq!(auto_mu(2, 2e-2), PAPER_MU); // 50 Hz: the paper's (exact hold)
+/// assert_eq!(auto_mu(3, 2e-3), PAPER_MU); // 500 Hz: the paper's mu, first-order hold
+/// assert!((auto_mu(2, 5e-3) - 0.009).abs() < 1e-12); // 200 Hz, first-order hold
+/// assert!((auto_mu(3, 1e-2) - 0.01 + 0.007 / 3.0).abs() < 1e-12);
+/// assert_eq!(auto_mu(2, 2e-2), 0.01); // 50 Hz: held at dt / 2
+/// assert!((auto_mu(4, 5e-3) - 0.007).abs() < 1e-12); // Tustin
 /// ```
 pub fn auto_mu(order: usize, dt: f64) -> f64 {
     let dt_ref = 0.1 * PAPER_MU;
-    let order = order.max(1) as f64;
+    let n = order.max(1) as f64;
+    if order <= 3 {
+        if PAPER_MU >= PAPER_MU_PER_DT * dt {
+            return PAPER_MU;
+        }
+        let mu = PAPER_MU - 2.0 / n * (FOH_SAMPLE_DELAY * dt - SAMPLE_DELAY * dt_ref);
+        let floor = FOH_MIN_MU_PER_DT * dt;
+        return if mu > PAPER_MU {
+            PAPER_MU
+        } else if mu > floor {
+            mu
+        } else {
+            floor
+        };
+    }
     let late = if dt > dt_ref { dt - dt_ref } else { 0.0 };
     if late == 0.0 {
         return PAPER_MU;
     }
-    let mu = PAPER_MU - 2.0 * SAMPLE_DELAY / order * late;
+    let mu = PAPER_MU - 2.0 * SAMPLE_DELAY / n * late;
     let floor = if dt < PAPER_MU { dt } else { PAPER_MU };
     if mu > floor {
         mu
@@ -196,8 +235,8 @@ impl<T: Real, const N: usize> HighGain<T, N> {
     /// use famcc_core::{Discretization, HighGain};
     /// assert_eq!(HighGain::<f64, 3>::auto_at(3, 1e-3), HighGain::paper());
     /// let h = HighGain::<f64, 3>::auto_at(3, 5e-3); // 200 Hz
-    /// assert!((h.mu - 0.006).abs() < 1e-12);
-    /// assert_eq!((h.a, h.discretization), ([4.0, 6.0, 4.0], Discretization::Tustin));
+    /// assert!((h.mu - 0.01 + 0.002 / 3.0).abs() < 1e-12);
+    /// assert_eq!((h.a, h.discretization), ([4.0, 6.0, 4.0], Discretization::Foh));
     /// ```
     pub fn auto_at(order: usize, dt: f64) -> Self {
         let mut h = Self::auto_for(order);

@@ -11,7 +11,7 @@
 //! one.
 
 use super::expm::expm_zoh;
-use super::linalg::{identity, lu_solve, Mat};
+use super::linalg::{identity, lu_solve, mat_vec, Mat};
 use super::{DiscreteHgd, Discretization};
 use crate::Real;
 
@@ -36,8 +36,16 @@ pub(super) fn discretize<T: Real, const N: usize>(
     let mut a = *a;
     a.iter_mut().skip(m).for_each(|x| *x = 0.0);
     let m0 = balanced_matrix(&a, m);
+    let mut feed0 = [0.0; N];
     let (mut phi0, gamma0) = match method {
         Discretization::Exact => expm_zoh(&m0, &a, tau).ok_or(Failure::Singular)?,
+        Discretization::Foh => {
+            let (phi0, zoh) = expm_zoh(&m0, &a, tau).ok_or(Failure::Singular)?;
+            feed0 = ramp_response(&m0, &a, &zoh, tau, m).ok_or(Failure::Singular)?;
+            let mut held = zoh;
+            held.iter_mut().zip(feed0.iter()).for_each(|(g, d)| *g -= d);
+            (phi0, held)
+        }
         Discretization::Euler => {
             let mut phi0 = identity::<N>();
             for (prow, mrow) in phi0.iter_mut().zip(m0.iter()) {
@@ -77,7 +85,59 @@ pub(super) fn discretize<T: Real, const N: usize>(
             }
         }
     }
-    unbalance(&phi0, &gamma0, mu, m).ok_or(Failure::Overflow)
+    unbalance(&phi0, &gamma0, &feed0, mu, m).ok_or(Failure::Overflow)
+}
+
+/// The first-order hold's feedthrough in balanced coordinates,
+/// `D0 = (1/tau) integral_0^tau exp(M0 s) (tau - s) ds a`, from the held
+/// input's `zoh = integral_0^tau exp(M0 s) ds a`.
+///
+/// `M0 D0 = (zoh - tau a) / tau` (integrate `exp(M0 s)` by parts), solved
+/// by LU where `tau ||M0||_1 > 1`; below that the difference cancels, and the
+/// series `D0 = sum_k tau^(k+1) M0^k a / (k+2)!` (its terms fall by at least
+/// `1/(k+3)` each) is summed until a term no longer changes the sum. The
+/// unused block (`m < N`) is the identity in the solve, with a zero right side.
+fn ramp_response<const N: usize>(
+    m0: &Mat<N>,
+    a: &[f64; N],
+    zoh: &[f64; N],
+    tau: f64,
+    m: usize,
+) -> Option<[f64; N]> {
+    let norm = (0..N)
+        .map(|j| {
+            m0.iter()
+                .map(|row| row.get(j).map_or(0.0, |x| x.abs()))
+                .sum::<f64>()
+        })
+        .fold(0.0, f64::max);
+    if tau * norm > 1.0 {
+        let mut lhs = *m0;
+        for (i, row) in lhs.iter_mut().enumerate().skip(m) {
+            if let Some(d) = row.get_mut(i) {
+                *d = 1.0;
+            }
+        }
+        let mut rhs = [0.0; N];
+        for ((r, z), ai) in rhs.iter_mut().zip(zoh.iter()).zip(a.iter()) {
+            *r = (z - tau * ai) / tau;
+        }
+        return lu_solve(lhs, [[0.0; N]; N], rhs).map(|(_, d)| d);
+    }
+    // term_k = tau^(k+1) M0^k a / (k+2)!
+    let mut term = a.map(|x| x * tau / 2.0);
+    let mut sum = term;
+    for k in 1..64 {
+        let next = mat_vec(m0, &term);
+        let scale = tau / (k + 2) as f64;
+        term = next.map(|x| x * scale);
+        let before = sum;
+        sum.iter_mut().zip(term.iter()).for_each(|(s, t)| *s += t);
+        if sum == before {
+            break;
+        }
+    }
+    Some(sum)
 }
 
 /// `M0 = A - a C` of order `m` (the leading block): the matrix of eq. (34)
@@ -104,22 +164,25 @@ fn balanced_matrix<const N: usize>(a: &[f64; N], m: usize) -> Mat<N> {
 fn unbalance<T: Real, const N: usize>(
     phi0: &Mat<N>,
     gamma0: &[f64; N],
+    feed0: &[f64; N],
     mu: f64,
     m: usize,
 ) -> Option<DiscreteHgd<T, N>> {
     let offset = N.saturating_sub(m);
     let mut phi = [[T::zero(); N]; N];
     let mut gamma = [T::zero(); N];
+    let mut feedthrough = [T::zero(); N];
     let pow = |k: i64| -> f64 {
         // k is within +-(N-1); clamp keeps the cast lossless for any N.
         let k = k.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
         num_traits::Float::powi(mu, k)
     };
-    for (i, ((prow, p0row), (g, g0))) in phi
+    for (i, (((prow, p0row), (g, g0)), (d, d0))) in phi
         .iter_mut()
         .skip(offset)
         .zip(phi0.iter())
         .zip(gamma.iter_mut().skip(offset).zip(gamma0.iter()))
+        .zip(feedthrough.iter_mut().skip(offset).zip(feed0.iter()))
         .enumerate()
     {
         let i = i as i64;
@@ -130,15 +193,17 @@ fn unbalance<T: Real, const N: usize>(
                 return None;
             }
         }
-        let x = if *g0 == 0.0 { 0.0 } else { g0 * pow(-i) };
-        *g = T::from_f64(x);
-        if !g.is_finite() {
-            return None;
+        for (out, v0) in [(g, g0), (d, d0)] {
+            *out = T::from_f64(if *v0 == 0.0 { 0.0 } else { v0 * pow(-i) });
+            if !out.is_finite() {
+                return None;
+            }
         }
     }
     Some(DiscreteHgd {
         phi,
         gamma,
         prefilter: T::one(),
+        feedthrough,
     })
 }

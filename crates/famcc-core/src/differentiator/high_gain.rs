@@ -27,6 +27,16 @@ pub enum Discretization {
     /// `Gamma = (I - M dt/2)^-1 H dt`. Stable for every `dt`, but it maps very
     /// fast modes to eigenvalues near `-1` (ringing) when `dt >> mu`.
     Tustin,
+    /// First-order (triangle) hold: the measurement is taken as the straight
+    /// line through the samples, so the estimate at sample `k` uses `e_k`
+    /// itself. `Phi` as [`Discretization::Exact`]; the held input's
+    /// `Gamma_zoh` splits into the part `Gamma_0` of `e_(k-1)` and the direct
+    /// feedthrough `D = (1/dt) (integral_0^dt exp(M s) (dt - s) ds) H` of `e_k`
+    /// ([`DiscreteHgd::feedthrough`](super::DiscreteHgd::feedthrough)). Exact
+    /// for a piecewise-linear measurement and stable for every `dt`: it
+    /// removes the sample of delay that the held (ZOH) input adds, which is
+    /// what a slow loop lacks (docs/tuning.md, "Sample rate").
+    Foh,
 }
 
 /// The high-gain differentiator's parameters (eq. (34), HGD): time constant `mu`

@@ -18,7 +18,7 @@
 //!
 //! The system is linear and time-invariant, so it is turned into the
 //! recursion `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` once, for a fixed `dt`
-//! (docs/design.md §3.3), by one of three [`Discretization`]s. The default,
+//! (docs/design.md §3.3), by one of four [`Discretization`]s. The default,
 //! [`Discretization::Exact`], is the zero-order-hold solution: stable for
 //! every `dt`.
 //!
@@ -54,8 +54,8 @@ mod linalg;
 mod recursion;
 
 pub use defaults::{
-    auto_discretization, auto_discretization_at, auto_mu, paper_coefficients, EXACT_DT_PER_MU, PAPER_MU,
-    SAMPLE_DELAY,
+    auto_discretization, auto_discretization_at, auto_mu, paper_coefficients, EXACT_DT_PER_MU,
+    FOH_MIN_MU_PER_DT, FOH_SAMPLE_DELAY, PAPER_MU, PAPER_MU_PER_DT, SAMPLE_DELAY,
 };
 pub(crate) use high_gain::prefilter_gain;
 pub use high_gain::{Discretization, HighGain};

@@ -23,6 +23,12 @@ pub struct DiscreteHgd<T, const N: usize> {
     /// The prefilter's gain per period, `1 - exp(-dt / tau)` in `(0, 1]`;
     /// exactly 1 without a prefilter (the paper's differentiator: `f_k = e_k`).
     pub prefilter: T,
+    /// The direct feedthrough `D` of the first-order hold
+    /// ([`Discretization::Foh`](super::Discretization::Foh)); zeros for the
+    /// other discretizations. With it the recursion stores `W_k` and the
+    /// estimate of sample `k` is `Zhat_k = W_k + D f_k`
+    /// ([`DiscreteHgd::current`]), `W_(k+1) = Phi Zhat_k + Gamma f_k`.
+    pub feedthrough: [T; N],
 }
 
 impl<T: Real, const N: usize> DiscreteHgd<T, N> {
@@ -31,12 +37,28 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
     ///
     /// ```
     /// use famcc_core::DiscreteHgd;
-    /// let d = DiscreteHgd { phi: [[0.5_f64, 0.25], [0.0, 0.25]], gamma: [0.5, 2.0], prefilter: 1.0 };
+    /// let d = DiscreteHgd { phi: [[0.5_f64, 0.25], [0.0, 0.25]], gamma: [0.5, 2.0], prefilter: 1.0, feedthrough: [0.0; 2] };
     /// assert_eq!(d.advance(&[1.0, 2.0], 4.0), [3.0, 8.5]);
     /// ```
     #[inline]
     pub fn advance(&self, zhat: &[T; N], e: T) -> [T; N] {
         Recursion::new(self).advance(zhat, e)
+    }
+
+    /// The estimate of the sample whose (prefiltered) input is `f`, from the
+    /// stored `w`: `w + D f` with the first-order hold's feedthrough `D`,
+    /// and `w` itself (bit for bit) for the other discretizations.
+    ///
+    /// ```
+    /// use famcc_core::DiscreteHgd;
+    /// let d = DiscreteHgd { phi: [[0.5_f64]], gamma: [0.25], prefilter: 1.0, feedthrough: [0.25] };
+    /// assert_eq!(d.current(&[1.0], 2.0), [1.5]);
+    /// let held = DiscreteHgd { feedthrough: [0.0], ..d };
+    /// assert_eq!(held.current(&[-0.0], 2.0)[0].to_bits(), (-0.0_f64).to_bits());
+    /// ```
+    #[inline]
+    pub fn current(&self, w: &[T; N], f: T) -> [T; N] {
+        Recursion::new(self).current(w, f)
     }
 
     /// The differentiator's input for the sample `e` after the input `last`
@@ -46,7 +68,7 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
     ///
     /// ```
     /// use famcc_core::DiscreteHgd;
-    /// let d = DiscreteHgd { phi: [[0.5_f64]], gamma: [0.5], prefilter: 0.25 };
+    /// let d = DiscreteHgd { phi: [[0.5_f64]], gamma: [0.5], prefilter: 0.25, feedthrough: [0.0] };
     /// assert_eq!(d.filter(2.0, 6.0), 3.0);
     /// assert_eq!(d.filter(6.0, 6.0), 6.0);
     /// let plain = DiscreteHgd { prefilter: 1.0, ..d };
@@ -85,9 +107,18 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
     /// precomputed elsewhere, whose leading `offset` slots (the integral's)
     /// must be unused.
     pub(crate) fn check_precomputed(&self, offset: usize) -> Result<(), ConfigError> {
-        let entries = || self.phi.iter().flatten().chain(self.gamma.iter());
+        let entries = || {
+            self.phi
+                .iter()
+                .flatten()
+                .chain(self.gamma.iter())
+                .chain(self.feedthrough.iter())
+        };
         if !entries().all(|v| v.is_finite()) {
-            return Err(ConfigError::new("discretized", "must have finite Phi and Gamma"));
+            return Err(ConfigError::new(
+                "discretized",
+                "must have finite Phi, Gamma and feedthrough",
+            ));
         }
         if !(self.prefilter > T::zero() && self.prefilter <= T::one()) {
             return Err(ConfigError::new(
@@ -99,6 +130,7 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
             .gamma
             .iter()
             .take(offset)
+            .chain(self.feedthrough.iter().take(offset))
             .chain(self.phi.iter().enumerate().flat_map(|(i, row)| {
                 row.iter()
                     .enumerate()
@@ -133,6 +165,8 @@ pub(crate) struct Recursion<T, const N: usize> {
     cols: [[T; N]; N],
     gamma: [T; N],
     prefilter: T,
+    /// `Some(D)` for the first-order hold (a nonzero feedthrough).
+    feedthrough: Option<[T; N]>,
 }
 
 impl<T: Real, const N: usize> Recursion<T, N> {
@@ -142,6 +176,11 @@ impl<T: Real, const N: usize> Recursion<T, N> {
             cols: transpose(&d.phi),
             gamma: d.gamma,
             prefilter: d.prefilter,
+            feedthrough: d
+                .feedthrough
+                .iter()
+                .any(|x| *x != T::zero())
+                .then_some(d.feedthrough),
         }
     }
 
@@ -151,7 +190,24 @@ impl<T: Real, const N: usize> Recursion<T, N> {
             phi: transpose(&self.cols),
             gamma: self.gamma,
             prefilter: self.prefilter,
+            feedthrough: self.feedthrough.unwrap_or([T::zero(); N]),
         }
+    }
+
+    /// True for a first-order hold (a feedthrough to add).
+    #[inline(always)]
+    pub(crate) fn has_feedthrough(&self) -> bool {
+        self.feedthrough.is_some()
+    }
+
+    /// [`DiscreteHgd::current`].
+    #[inline(always)]
+    pub(crate) fn current(&self, w: &[T; N], f: T) -> [T; N] {
+        let mut z = *w;
+        if let Some(d) = &self.feedthrough {
+            z.iter_mut().zip(d.iter()).for_each(|(z, d)| *z = *z + *d * f);
+        }
+        z
     }
 
     /// [`DiscreteHgd::advance`].

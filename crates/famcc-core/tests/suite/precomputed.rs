@@ -98,11 +98,13 @@ fn a_non_finite_entry_is_rejected() {
         phi.phi[2][0] = v;
         let mut gamma = good;
         gamma.gamma[1] = v;
-        for bad in [phi, gamma] {
+        let mut feed = good;
+        feed.feedthrough[2] = v;
+        for bad in [phi, gamma, feed] {
             let e = b.build_discretized(bad).unwrap_err();
             assert_eq!(
                 (e.parameter, e.rule),
-                ("discretized", "must have finite Phi and Gamma")
+                ("discretized", "must have finite Phi, Gamma and feedthrough")
             );
         }
     }

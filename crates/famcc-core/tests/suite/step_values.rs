@@ -445,8 +445,12 @@ fn inv(a: &M2) -> M2 {
 /// (`a2 = a1^2/4`), written out for each discretization:
 /// - exact: `exp(M t) = e^(lambda t) (I + (M - lambda I) t)`, `Gamma = M^-1 (Phi - I) H`;
 /// - Euler: `Phi = I + M dt`, `Gamma = H dt`;
-/// - Tustin: `Phi = (I - M dt/2)^-1 (I + M dt/2)`, `Gamma = (I - M dt/2)^-1 H dt`.
-fn closed_form(a1: f64, mu: f64, dt: f64, d: Discretization) -> (M2, [f64; 2]) {
+/// - Tustin: `Phi = (I - M dt/2)^-1 (I + M dt/2)`, `Gamma = (I - M dt/2)^-1 H dt`;
+/// - first-order hold: exact's `Phi`, the feedthrough
+///   `D = M^-1 (Gamma_exact - H dt) / dt` and `Gamma = Gamma_exact - D`.
+///
+/// Returns `(Phi, Gamma, D)` (`D = 0` but for the first-order hold).
+fn closed_form(a1: f64, mu: f64, dt: f64, d: Discretization) -> (M2, [f64; 2], [f64; 2]) {
     let a2 = a1 * a1 / 4.0;
     let m: M2 = [[-a1 / mu, 1.0], [-a2 / (mu * mu), 0.0]];
     let h = [a1 / mu, a2 / (mu * mu)];
@@ -458,11 +462,16 @@ fn closed_form(a1: f64, mu: f64, dt: f64, d: Discretization) -> (M2, [f64; 2]) {
         ]
     };
     match d {
-        Discretization::Euler => (lin(dt), [h[0] * dt, h[1] * dt]),
+        Discretization::Euler => (lin(dt), [h[0] * dt, h[1] * dt], [0.0; 2]),
         Discretization::Tustin => {
             let l = inv(&lin(-dt / 2.0));
             let g = mv(&l, h);
-            (mul(&l, &lin(dt / 2.0)), [g[0] * dt, g[1] * dt])
+            (mul(&l, &lin(dt / 2.0)), [g[0] * dt, g[1] * dt], [0.0; 2])
+        }
+        Discretization::Foh => {
+            let (phi, g, _) = closed_form(a1, mu, dt, Discretization::Exact);
+            let r = mv(&inv(&m), [(g[0] - h[0] * dt) / dt, (g[1] - h[1] * dt) / dt]);
+            (phi, [g[0] - r[0], g[1] - r[1]], r)
         }
         Discretization::Exact => {
             let lam = -a1 / (2.0 * mu);
@@ -472,15 +481,16 @@ fn closed_form(a1: f64, mu: f64, dt: f64, d: Discretization) -> (M2, [f64; 2]) {
                 [e * m[1][0] * dt, e * (1.0 + (m[1][1] - lam) * dt)],
             ];
             let pm: M2 = [[phi[0][0] - 1.0, phi[0][1]], [phi[1][0], phi[1][1] - 1.0]];
-            (phi, mv(&mul(&inv(&m), &pm), h))
+            (phi, mv(&mul(&inv(&m), &pm), h), [0.0; 2])
         }
     }
 }
 
-const DISCRETIZATIONS: [Discretization; 3] = [
+const DISCRETIZATIONS: [Discretization; 4] = [
     Discretization::Exact,
     Discretization::Euler,
     Discretization::Tustin,
+    Discretization::Foh,
 ];
 
 #[test]
@@ -492,9 +502,14 @@ fn discretizations_match_their_closed_forms() {
             (6.0, 0.02, 1e-3),
             (4.0, 0.05, 0.01),
         ] {
-            let (phi, g) = closed_form(a1, mu, dt, d);
+            let (phi, g, feed) = closed_form(a1, mu, dt, d);
             let got = HighGain::new(mu, [a1, a1 * a1 / 4.0], d).discretize(dt).unwrap();
-            let rel = if d == Discretization::Exact { 1e-10 } else { 1e-12 };
+            let rel = match d {
+                Discretization::Exact => 1e-10,
+                // The closed form's D cancels Gamma_exact - H dt.
+                Discretization::Foh => 1e-8,
+                _ => 1e-12,
+            };
             for i in 0..2 {
                 for j in 0..2 {
                     // Entries that are exactly 0 in theory cannot be relative-checked.
@@ -513,13 +528,19 @@ fn discretizations_match_their_closed_forms() {
                     rel,
                     &format!("{d:?} Gamma[{i}] a1={a1} mu={mu} dt={dt}"),
                 );
+                assert_close(
+                    got.feedthrough[i],
+                    feed[i],
+                    rel,
+                    &format!("{d:?} D[{i}] a1={a1} mu={mu} dt={dt}"),
+                );
             }
         }
     }
 }
 
 /// Every discretization has DC gain 1: a constant measurement `c` is the fixed
-/// point `(c, 0, ..., 0)`, i.e. `Phi_i0 + Gamma_i = [i = 0]` (and `Phi`
+/// point `(c, 0, ..., 0)`, i.e. `Phi_i0 + Gamma_i + D_i = [i = 0]` (and `Phi`
 /// otherwise leaves it alone), at orders 2 to 4.
 #[test]
 fn discretizations_have_unit_dc_gain() {
@@ -529,7 +550,8 @@ fn discretizations_have_unit_dc_gain() {
                 let h = HighGain::new(0.01, a, d).discretize(dt).unwrap();
                 let mut fixed = [0.0; N];
                 fixed[0] = 1.5;
-                let next = h.advance(&fixed, 1.5);
+                // (the first-order hold's estimate adds the next sample's feedthrough)
+                let next = h.current(&h.advance(&fixed, 1.5), 1.5);
                 for (i, x) in next.iter().enumerate() {
                     let want = if i == 0 { 1.5 } else { 0.0 };
                     let tol = 1e-9 * 0.01f64.powi(-(i as i32)).max(1.0);
@@ -544,7 +566,7 @@ fn discretizations_have_unit_dc_gain() {
 }
 
 /// Output feedback, order 2, LoMC with a linear law: every step's `z_hat` is the
-/// closed-form recursion `Zhat_{k+1} = Phi Zhat_k + Gamma e_k` from
+/// closed-form recursion `Zhat_{k+1} = Phi Zhat_k + Gamma e_k + D e_(k+1)` from
 /// `Zhat_0 = (e_0, d_2)`, and its `xi` and `v` follow from it by hand (with
 /// the flexible boundary of eq. (30), `rho_e = 0.01`); also with the estimate
 /// limits, which clip `z_hat` before the law.
@@ -574,9 +596,11 @@ fn output_feedback_steps_follow_the_closed_form_recursion() {
                 .build()
                 .unwrap();
                 let mut c = Controller::new(cfg);
-                let (phi, g) = closed_form(4.0, mu, dt, d);
+                let (phi, g, feed) = closed_form(4.0, mu, dt, d);
                 let es: Vec<f64> = (0..40).map(|i| 0.8 * (0.3 * i as f64).cos() - 0.2).collect();
+                // zhat: this step's estimate; stored: the one the next step starts from.
                 let mut zhat = [es[0], init.map_or(0.0, |v| v[1])];
+                let mut stored = zhat;
                 let clip = |z: [f64; 2]| match limits {
                     Some(l) => [z[0].clamp(-l[0], l[0]), z[1].clamp(-l[1], l[1])],
                     None => z,
@@ -605,12 +629,14 @@ fn output_feedback_steps_follow_the_closed_form_recursion() {
                     near(diag.xi, xi, 1e-8, &format!("{what}: xi at step {i}"));
                     near(v, -k_u * gamma(map, xi), 1e-8, &format!("{what}: v at step {i}"));
                     let next = mv(&phi, zhat);
-                    zhat = [next[0] + g[0] * e, next[1] + g[1] * e];
+                    stored = [next[0] + g[0] * e, next[1] + g[1] * e];
+                    let e_next = es.get(i + 1).copied().unwrap_or(0.0);
+                    zhat = [stored[0] + feed[0] * e_next, stored[1] + feed[1] * e_next];
                 }
                 for j in 0..2 {
                     near(
                         c.estimate()[j],
-                        zhat[j],
+                        stored[j],
                         1e-9,
                         &format!("{what}: final estimate[{j}]"),
                     );
@@ -1042,4 +1068,60 @@ fn single_ended_jet_keeps_normal_derivatives_where_the_value_is_subnormal() {
     // Below twice the log of the smallest positive number it is flat.
     let flat = single_ended_jet(Jet::<f64, 2>::from_derivatives([1.0 / 2000.0, 1.0]));
     assert_eq!((flat.value(), flat.derivative(1)), (0.0, 0.0));
+}
+
+/// The first-order hold: each step's estimate is the stored one plus the
+/// feedthrough `D f_k` of the period that just elapsed, also when that period
+/// was a one-off (`step_dt`), and in state feedback the differentiator keeps
+/// running the same recursion. Checked against `DiscreteHgd`'s own `advance`
+/// and `current` at the periods used.
+#[test]
+fn first_order_hold_adds_the_elapsed_periods_feedthrough() {
+    let (dt, h) = (5e-3, 8e-3);
+    let hg = HighGain::new(9e-3, [4.0, 4.0], Discretization::Foh);
+    let build = || {
+        let cfg = Config::<f64, 2>::builder(
+            dt,
+            &[(Feedback::Linear { k: 2.0 }, None)],
+            Constraint::Longitudinal { eps: 0.1 },
+            3.0,
+        )
+        .differentiator(Some(hg))
+        .build()
+        .unwrap();
+        Controller::new(cfg)
+    };
+    let (nominal, one_off) = (hg.discretize(dt).unwrap(), hg.discretize(h).unwrap());
+    assert!(one_off.feedthrough[1] != nominal.feedthrough[1] && nominal.feedthrough[1] != 0.0);
+    let es = [0.3, 0.25, 0.1, -0.05, -0.2, -0.1];
+    // periods: dt, h (one-off), dt, dt, h, dt
+    let periods = [dt, h, dt, dt, h, dt];
+    let mut c = build();
+    let mut w = [es[0], 0.0];
+    let mut elapsed: Option<f64> = None;
+    for (k, (&e, &p)) in es.iter().zip(periods.iter()).enumerate() {
+        if p == dt {
+            c.step(e).unwrap();
+        } else {
+            c.step_dt(e, p, None).unwrap();
+        }
+        let zhat = match elapsed {
+            None => w,
+            Some(q) => (if q == dt { nominal } else { one_off }).current(&w, e),
+        };
+        let got = c.diagnostics().z_hat;
+        assert_eq!(got, zhat, "step {k}");
+        w = (if p == dt { nominal } else { one_off }).advance(&zhat, e);
+        assert_eq!(*c.estimate(), w, "stored estimate after step {k}");
+        elapsed = Some(p);
+    }
+    // State feedback: the law uses the measured vector, the differentiator
+    // the stored estimate plus this sample's feedthrough.
+    let mut s = build();
+    s.step_state([0.3, 1.0]).unwrap();
+    let w1 = nominal.advance(&[0.3, 1.0], 0.3);
+    assert_eq!(*s.estimate(), w1);
+    s.step_state([0.2, -1.0]).unwrap();
+    assert_eq!(s.diagnostics().z_hat, [0.2, -1.0]);
+    assert_eq!(*s.estimate(), nominal.advance(&nominal.current(&w1, 0.2), 0.2));
 }
