@@ -601,6 +601,41 @@ class HighGain:
         >>> round(h.mu, 6), h.discretization
         (0.009333, 'foh')
         """
+    @staticmethod
+    def discretization_for(order: int, dt: float, mu: float) -> _Discretization:
+        """The discretization famcc picks for a differentiator sampled at ``dt``.
+
+        famcc-core's ``auto_discretization_at`` (also ``famcc.design``'s and
+        :meth:`for_rate`'s): up to order 3 'exact' while ``mu >= 10 dt`` (the
+        paper's ratio), 'foh' (first-order hold) at coarser sampling; 'tustin'
+        from order 4 on.
+
+        Parameters
+        ----------
+        order : int
+            The differentiator's order (the plant's order), 1 to 8.
+        dt : float
+            The sample period, s.
+        mu : float
+            The differentiator's time constant, s.
+
+        Returns
+        -------
+        str
+            'exact', 'foh' or 'tustin'.
+
+        Raises
+        ------
+        famcc.ConfigError
+            If ``order`` is out of range, or ``dt`` or ``mu`` is not finite and > 0.
+
+        Examples
+        --------
+        >>> import famcc
+        >>> H = famcc.HighGain
+        >>> H.discretization_for(2, 1e-3, 0.01), H.discretization_for(2, 5e-3, 0.01)
+        ('exact', 'foh')
+        """
     @property
     def mu(self) -> float:
         """The gain's time constant, s."""

@@ -287,7 +287,8 @@ def lmcc(
     constraint longitudinal on ``s`` with final half-width ``eps``, and
     ``rho_e=None`` switches the error-driven flexible bounds off: the
     low-complexity PPC / LMCC of the paper's references, its special case.
-    ``mu`` is the high-gain differentiator's time constant (s).
+    ``mu`` is the high-gain differentiator's time constant (s), discretized as
+    famcc picks for ``dt`` (:meth:`famcc.HighGain.discretization_for`).
     """
     import famcc
 
@@ -301,5 +302,7 @@ def lmcc(
         settle_time=settle_time,
         k_u=k_u,
         rho_e=None,
-        differentiator=famcc.HighGain.default(order, mu=mu),
+        differentiator=famcc.HighGain.default(
+            order, mu=mu, discretization=famcc.HighGain.discretization_for(order, dt, mu)
+        ),
     )

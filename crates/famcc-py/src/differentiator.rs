@@ -297,6 +297,56 @@ impl HighGain {
         )
     }
 
+    /// The discretization famcc picks for a differentiator sampled at ``dt``.
+    ///
+    /// famcc-core's ``auto_discretization_at`` (also ``famcc.design``'s and
+    /// :meth:`for_rate`'s): up to order 3 'exact' while ``mu >= 10 dt`` (the
+    /// paper's ratio), 'foh' (first-order hold) at coarser sampling; 'tustin'
+    /// from order 4 on.
+    ///
+    /// Parameters
+    /// ----------
+    /// order : int
+    ///     The differentiator's order (the plant's order), 1 to 8.
+    /// dt : float
+    ///     The sample period, s.
+    /// mu : float
+    ///     The differentiator's time constant, s.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     'exact', 'foh' or 'tustin'.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     If ``order`` is out of range, or ``dt`` or ``mu`` is not finite and > 0.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> H = famcc.HighGain
+    /// >>> H.discretization_for(2, 1e-3, 0.01), H.discretization_for(2, 5e-3, 0.01)
+    /// ('exact', 'foh')
+    #[staticmethod]
+    #[pyo3(text_signature = "(order, dt, mu)")]
+    fn discretization_for(order: usize, dt: Num, mu: Num) -> PyResult<&'static str> {
+        check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
+        for (name, v) in [("dt", dt.0), ("mu", mu.0)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(ConfigError::new_err(format!(
+                    "{name} must be finite and > 0 (got {v})"
+                )));
+            }
+        }
+        Ok(
+            DISCRETIZATION.name(famcc_core::differentiator::auto_discretization_at(
+                order, dt.0, mu.0,
+            )),
+        )
+    }
+
     /// The coefficients ``(a1, ..., an)``.
     #[getter]
     fn a<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {

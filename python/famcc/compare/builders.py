@@ -53,7 +53,11 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
         )
     if kind != "famcc":
         raise ValueError(f"kind must be one of {', '.join(_KINDS)}, got {kind!r}")
-    hg = famcc.HighGain.default(n, mu=p["mu"])
+    # the discretization famcc picks for this mu at this dt (the first-order
+    # hold once mu < 10 dt up to order 3, Tustin from order 4 on)
+    hg = famcc.HighGain.default(
+        n, mu=p["mu"], discretization=famcc.HighGain.discretization_for(n, dt, p["mu"])
+    )
     # the envelope latch of the authors' code, as `famcc reproduce` (variant "code") uses
     common = {
         "settle_time": p["settle_time"],

@@ -150,7 +150,10 @@ def _intro(result: dict[str, Any]) -> list[str]:
             "first-order measurement filter; ADRC: linear ADRC with an ESO, bandwidth-"
             "parameterised, `b0` = the plant's nominal gain (pyadrc at order 2, the same "
             "discretisation generalised at orders 3 and 4). Each joint of the arm has its "
-            "own controller (decentralised)."
+            "own controller (decentralised). famcc and LMCC discretize their differentiator "
+            "as famcc picks for the sample period (`HighGain.discretization_for`: the exact "
+            "hold while mu >= 10 dt, the first-order hold below, up to order 3; Tustin from "
+            "order 4 on)."
         ),
         "",
         (
@@ -171,7 +174,8 @@ def _intro(result: dict[str, Any]) -> list[str]:
             "**Conditions.** nominal (1 kHz); saturated (the tighter limits given per plant); "
             "measurement noise, white Gaussian with std 1e-4, 1e-3, 1e-2 output units; "
             f"dispersion: {meta['dispersion_plants']} plants with every physical parameter "
-            f"times U(0.7, 1.3), the worst of them shown; 200 Hz (the same parameters). "
+            f"times U(0.7, 1.3), the worst of them shown; 200 Hz (the same parameters; "
+            "famcc's differentiator rediscretized by its rule). "
             "A run diverges when |z1| exceeds 10 max(|z1(0)|, 1) or a value becomes non-finite."
         ),
         "",

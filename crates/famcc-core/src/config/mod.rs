@@ -252,6 +252,14 @@ impl<T: Real, const N: usize> Config<T, N> {
         self.output_limits.is_none() && self.rate_limit.is_none() && !self.integral()
     }
 
+    /// [`Config::unlimited`], and a differentiator without the first-order
+    /// hold's feedthrough: the steady step that needs neither is compiled
+    /// apart (controller/advance.rs).
+    #[inline(always)]
+    pub(crate) fn steady_fast(&self) -> bool {
+        self.unlimited() && !self.hgd.as_ref().is_some_and(Recursion::has_feedthrough)
+    }
+
     /// A 52-bit fingerprint of the configuration's values (FNV-1a over
     /// their `Debug` text), exact in an `f64`. Snapshots carry it, so that a
     /// state is never restored into a controller with another configuration.

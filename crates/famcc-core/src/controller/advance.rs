@@ -27,10 +27,11 @@ impl<T: Real, const N: usize> Controller<T, N> {
         if !self.state.started {
             return self.control_then_advance_general(measured, one_off_dt, applied);
         }
-        // Without output limits, integral action or a told input, the limits,
-        // the integral separation and the health count are known to do
-        // nothing: that steady step is compiled apart, so they cost it nothing.
-        if applied.is_none() && self.config.unlimited() {
+        // Without output limits, integral action, a told input or the
+        // first-order hold's feedthrough, the limits, the integral separation,
+        // the health count and the feedthrough are known to do nothing: that
+        // steady step is compiled apart, so they cost it nothing.
+        if applied.is_none() && self.config.steady_fast() {
             self.control_then_advance_from::<true>(false, measured, one_off_dt, None)
         } else {
             self.control_then_advance_general(measured, one_off_dt, applied)
@@ -104,7 +105,8 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let (e, mut z, plan) = match measured {
             Measured::Error(e) => match hgd {
                 Some(d) => {
-                    let z = self.current_estimate(first, e, || d.filter(self.state.filtered, e));
+                    let z =
+                        self.current_estimate::<UNLIMITED>(first, d, e, || d.filter(self.state.filtered, e));
                     (e, self.limited(z), Next::Update(d))
                 }
                 // Order 1 needs no differentiator: Z = (e) (or (I, e)) is measured.
@@ -130,7 +132,11 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 let next = match c.recursion() {
                     Some(d) => {
                         let f = d.filter(last, e);
-                        let zhat = if self.state.started { self.held(|| f) } else { zhat };
+                        let zhat = if self.state.started && d.has_feedthrough() {
+                            self.held(f)
+                        } else {
+                            zhat
+                        };
                         (d.advance(&zhat, f), f)
                     }
                     None => (z, e),
@@ -187,7 +193,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let v = -c.k_u() * c.gamma().eval(eval.xi);
         let env = &self.state.envelopes;
         let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
-        let (mut next, filtered) = self.next_estimate(first, plan, e);
+        let (mut next, filtered) = self.next_estimate::<UNLIMITED>(first, plan, e);
         let updated = !carried || in_range(&next);
         if !(updated & latched & v.is_finite() & eval.xi.is_finite()) {
             if let Some(envelopes) = unlatched {
@@ -270,51 +276,63 @@ impl<T: Real, const N: usize> Controller<T, N> {
     /// The estimate the next step uses, and the differentiator's input of
     /// this sample (the prefiltered `e`, or `e`).
     #[inline(always)]
-    fn next_estimate(&self, first: bool, plan: Next<'_, T, N>, e: T) -> ([T; N], T) {
+    fn next_estimate<const PLAIN: bool>(&self, first: bool, plan: Next<'_, T, N>, e: T) -> ([T; N], T) {
         match plan {
             Next::Known(next) => next,
             Next::Update(d) => {
                 // Only the first step comes before anything started.
                 let last = if first { e } else { self.state.filtered };
                 let f = d.filter(last, e);
-                (d.advance(&self.current_estimate(first, e, || f), f), f)
+                (
+                    d.advance(&self.current_estimate::<PLAIN>(first, d, e, || f), f),
+                    f,
+                )
             }
         }
     }
 
     /// The estimate for this step: the initial one at the first step, else
-    /// the stored one with the first-order hold's feedthrough of this
-    /// sample's differentiator input `f()` ([`Self::held`]).
+    /// the stored one, with the first-order hold's feedthrough of this
+    /// sample's differentiator input `f()` ([`Self::held`]; `f` is evaluated
+    /// only then). `d` is this step's recursion (its discretization is the
+    /// configuration's). `PLAIN`: known to have no feedthrough (the steady
+    /// fast path, [`crate::Config::steady_fast`]).
     #[inline(always)]
-    fn current_estimate(&self, first: bool, e: T, f: impl FnOnce() -> T) -> [T; N] {
+    fn current_estimate<const PLAIN: bool>(
+        &self,
+        first: bool,
+        d: &Recursion<T, N>,
+        e: T,
+        f: impl FnOnce() -> T,
+    ) -> [T; N] {
         if first {
             return recover::initial_estimate(&self.config, e);
         }
-        self.held(f)
+        if PLAIN || !d.has_feedthrough() {
+            return self.state.zhat;
+        }
+        self.held(f())
     }
 
-    /// The stored estimate plus the feedthrough `D f()` of the sample's
-    /// differentiator input (first-order hold, [`crate::Discretization::Foh`]),
-    /// under the recursion of the period that just elapsed (the previous
-    /// step's: a one-off period is rediscretized); the stored estimate
-    /// itself, bit for bit and without evaluating `f`, for the other
-    /// discretizations.
-    #[inline(always)]
-    fn held(&self, f: impl FnOnce() -> T) -> [T; N] {
+    /// The stored estimate plus the first-order hold's feedthrough `D f`
+    /// ([`crate::Discretization::Foh`]) of the sample's differentiator input
+    /// `f`, under the recursion of the period that just elapsed (the
+    /// previous step's: a one-off period is rediscretized). Out of line: the
+    /// other discretizations never call it.
+    #[inline(never)]
+    fn held(&self, f: T) -> [T; N] {
         let c = &self.config;
         let w = &self.state.zhat;
-        match c.recursion() {
-            Some(d) if d.has_feedthrough() => {
-                let period = self.state.clock.period;
-                if crate::compiled::continues_run(c.dt(), period) {
-                    return d.current(w, f());
-                }
-                match c.recursion_at(period) {
-                    Some(Ok(r)) => r.current(w, f()),
-                    _ => d.current(w, f()),
-                }
-            }
-            _ => *w,
+        let Some(d) = c.recursion() else {
+            return *w;
+        };
+        let period = self.state.clock.period;
+        if crate::compiled::continues_run(c.dt(), period) {
+            return d.current(w, f);
+        }
+        match c.recursion_at(period) {
+            Some(Ok(r)) => r.current(w, f),
+            _ => d.current(w, f),
         }
     }
 
