@@ -10,6 +10,23 @@ use super::*;
 use core::ffi::CStr;
 use core::mem::MaybeUninit;
 
+/// Two controllers of `$storage` from `cfg`: one by `init`, one by
+/// `init_discretized` with the precomputed recursion `d` (both must succeed).
+macro_rules! init_both {
+    ($storage:ty, $cfg:expr, $d:expr, $err:ident) => {{
+        let mut a = MaybeUninit::<$storage>::zeroed();
+        let mut b = MaybeUninit::<$storage>::zeroed();
+        assert_eq!(
+            unsafe { init(a.as_mut_ptr(), $cfg, $err.as_mut_ptr()) },
+            FamccStatus::Ok
+        );
+        let status = unsafe { init_discretized(b.as_mut_ptr(), $cfg, $d, $err.as_mut_ptr()) };
+        assert_eq!(status, FamccStatus::Ok);
+        (a, b)
+    }};
+}
+pub(super) use init_both;
+
 macro_rules! precomputed_matches_init {
     ($name:ident, $t:ty, $storage:ty, $p:ident, $cfg:ident) => {
         #[test]
@@ -23,14 +40,7 @@ macro_rules! precomputed_matches_init {
                 FamccStatus::Ok
             );
             assert!(d.prefilter == 1.0 && d.phi[0][0] != 0.0);
-            let mut a = MaybeUninit::<$storage>::zeroed();
-            let mut b = MaybeUninit::<$storage>::zeroed();
-            assert_eq!(
-                unsafe { init(a.as_mut_ptr(), &cfg, err.as_mut_ptr()) },
-                FamccStatus::Ok
-            );
-            let status = unsafe { init_discretized(b.as_mut_ptr(), &cfg, &d, err.as_mut_ptr()) };
-            assert_eq!(status, FamccStatus::Ok);
+            let (mut a, mut b) = init_both!($storage, &cfg, &d, err);
             for e in signal::<$t>(2000) {
                 let (mut va, mut vb): ($t, $t) = (0.0, 0.0);
                 assert_eq!(unsafe { step(a.as_mut_ptr(), e, &mut va) }, FamccStatus::Ok);

@@ -7,7 +7,7 @@
 extern crate std;
 
 use super::tests::{c_config, rust_example1, rust_example3, signal};
-use super::tests_discretized::{o2_f32, o3_f64};
+use super::tests_discretized::{init_both, o2_f32, o3_f64};
 use super::*;
 use core::ffi::CStr;
 use core::mem::{offset_of, size_of, MaybeUninit};
@@ -114,14 +114,7 @@ macro_rules! foh_precomputed_round_trips {
             assert_eq!(convert::discretized_to_c(&back.discretized().unwrap()), d);
 
             // The target side steps as `*_init`.
-            let mut a = MaybeUninit::<$storage>::zeroed();
-            let mut b = MaybeUninit::<$storage>::zeroed();
-            assert_eq!(
-                unsafe { init(a.as_mut_ptr(), &cfg, err.as_mut_ptr()) },
-                FamccStatus::Ok
-            );
-            let status = unsafe { init_discretized(b.as_mut_ptr(), &cfg, &d, err.as_mut_ptr()) };
-            assert_eq!(status, FamccStatus::Ok);
+            let (mut a, mut b) = init_both!($storage, &cfg, &d, err);
             // Without the feedthrough the recursion is another (valid) one:
             // the feedthrough is read, not ignored.
             let mut c = MaybeUninit::<$storage>::zeroed();
