@@ -116,8 +116,11 @@ def loss_text(loss: dict[str, Any]) -> str:
     """One line of "Where famcc loses"."""
     where = f"{loss['case']}, {loss['condition']}"
     if loss["metric"] in ("diverged", "never_settled"):
-        what = "diverged" if loss["metric"] == "diverged" else "never settled to the band"
-        return f"{where}: famcc {what}; {', '.join(loss['winners'])} did not."
+        if loss["metric"] == "diverged":
+            what, peers = "diverged", "did not diverge"
+        else:
+            what, peers = "never settled to the band", "settled"
+        return f"{where}: famcc {what}; {', '.join(loss['winners'])} {peers}."
     label = dict(LOSS_METRICS)[loss["metric"]]
     return (
         f"{where}: {label} {loss['winners'][0]} {_g(loss['peer'])} vs famcc "
