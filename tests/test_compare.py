@@ -77,6 +77,19 @@ def test_where_famcc_loses_follows_from_the_numbers(quick):
             assert x["peer"] * 1.1 < x["famcc"]
 
 
+def test_a_loss_line_names_what_each_side_did() -> None:
+    base = {"case": "pendulum", "condition": "200 Hz", "winners": ["pid", "adrc"]}
+    settled = cmp.loss_text({**base, "metric": "never_settled"})
+    assert settled == "pendulum, 200 Hz: famcc never settled to the band; pid, adrc settled."
+    diverged = cmp.loss_text({**base, "metric": "diverged"})
+    assert diverged.endswith("famcc diverged; pid, adrc did not diverge.")
+    line = {**base, "metric": "iae", "famcc": 0.3, "peer": 0.1, "ratio": 3.04}
+    assert cmp.loss_text(line).endswith("IAE pid 0.1 vs famcc 0.3 (3.0x)")
+    # A peer at rounding-error level (1e-16 against 5e-3) gives an order, not 16 digits.
+    tiny = {**line, "metric": "final_rms", "famcc": 5e-3, "peer": 3e-16, "ratio": 1.6e13}
+    assert cmp.loss_text(tiny).endswith("(>1000x)")
+
+
 def test_the_tables_show_the_numbers_and_bold_the_best_iae(quick):
     out, data = quick
     md = (out / "report.md").read_text()

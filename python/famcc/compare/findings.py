@@ -124,7 +124,7 @@ def loss_text(loss: dict[str, Any]) -> str:
     label = dict(LOSS_METRICS)[loss["metric"]]
     return (
         f"{where}: {label} {loss['winners'][0]} {_g(loss['peer'])} vs famcc "
-        f"{_g(loss['famcc'])} ({loss['ratio']:.1f}x)"
+        f"{_g(loss['famcc'])} ({_ratio(loss['ratio'])})"
     )
 
 
@@ -134,3 +134,8 @@ def _g(v: Any, digits: int = 3) -> str:
     if isinstance(v, bool):
         return "yes" if v else "no"
     return f"{float(v):.{digits}g}"
+
+
+def _ratio(r: float) -> str:
+    """A loss ratio; beyond 1000x (a peer at rounding-error level) only its order."""
+    return f"{r:.1f}x" if r < 1000.0 else ">1000x"
