@@ -239,6 +239,40 @@ fn configs_that_cannot_run_are_rejected_by_name() {
     check::<f32>(3e38, 1e-38);
 }
 
+/// Initial derivatives within the builder's magnitude limit that still make
+/// the first step overflow are blamed on themselves (the probe runs the
+/// configuration again without them), not on the law that overflows: a
+/// fixed-time stage of exponent 5 is fine for `|e| <= 1e3` but not for an
+/// initial `e'` of 1e9 (f32) or 1e70 (f64).
+#[test]
+fn initial_derivatives_that_overflow_the_first_step_are_named() {
+    fn check<T: Real>(large: f64) {
+        let f = T::from_f64;
+        let fixed = Feedback::FixedTime {
+            alpha: T::one(),
+            p: f(0.5),
+            beta: f(2.0),
+            q: f(5.0),
+        };
+        let b = Config::<T, 3>::builder(
+            f(1e-3),
+            &[(Feedback::Linear { k: T::one() }, None), (fixed, None)],
+            Constraint::Longitudinal { eps: f(0.1) },
+            f(5.0),
+        );
+        let moderate = [T::zero(), f(1e3), f(1e3)];
+        assert!(b.initial_derivatives(Some(moderate)).build().is_ok());
+        let err = b
+            .initial_derivatives(Some([T::zero(), f(large), f(large)]))
+            .build()
+            .unwrap_err();
+        assert_eq!(err.parameter, "initial_derivatives");
+        assert!(err.rule.contains("first step overflows"), "{}", err.rule);
+    }
+    check::<f32>(1e9);
+    check::<f64>(1e70);
+}
+
 /// A law that overflows in a band of moderate errors and not at the ends
 /// of the range: Moulay's exponent tends to `lambda/mu` (about 103 here),
 /// composed with a fixed-time and two variable-exponent stages. Every step
