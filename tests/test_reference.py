@@ -93,10 +93,11 @@ def recorded(name: str, variant: str, t_end: float = 3.0):
 
 def core_discretization(ctrl: famcc.Controller):
     """The compiled controller's Phi, Gamma and first-order-hold feedthrough D (None
-    without one), read back exactly through its state. The stored ``filtered`` is
-    set to the sample so that a prefilter passes the sample on bit for bit; with a
-    feedthrough, the step's estimate ``W + D f`` from ``W = 0`` is ``D f``, and from
-    ``W = -D`` with ``f = 1`` it is exactly 0, so that the next one is ``Gamma_0``."""
+    without one), read back through its state. The stored ``filtered`` is set to the
+    sample so that a prefilter passes it on bit for bit and the input's increment is
+    0 (the step's estimate is the stored ``V``); from ``V = 0`` and ``filtered = 0`` a
+    sample's estimate is ``D f`` with ``f`` the (prefiltered) input the step stores
+    (exactly ``D`` times the probe without a prefilter, to an ulp with one)."""
     c = ctrl.__copy__()
     c.reset()
     c.step(0.0)
@@ -113,15 +114,16 @@ def core_discretization(ctrl: famcc.Controller):
             phi[i][j] = float(x)
     s = base.copy()
     s[ZHAT:] = 0.0
-    s[FILTERED] = PROBE_INPUT
+    s[FILTERED] = 0.0
     c.set_state(s)
-    c.step(PROBE_INPUT)  # the law sees 0 + D * f
-    feed = [float(x) / PROBE_INPUT for x in c.diagnostics.z_hat]
+    c.step(PROBE_INPUT)  # the law sees 0 + D (f - 0)
+    f = float(c.state()[FILTERED])
+    feed = [float(x) / f for x in c.diagnostics.z_hat]
     s = base.copy()
-    s[ZHAT:] = [-x for x in feed] if any(feed) else 0.0
+    s[ZHAT:] = 0.0
     s[FILTERED] = 1.0
     c.set_state(s)
-    c.step(1.0)  # Phi (-D + D * 1) + Gamma * 1
+    c.step(1.0)  # Phi 0 + Gamma * 1 (no increment)
     gamma = tuple(float(x) for x in c.estimate)
     return tuple(map(tuple, phi)), gamma, (tuple(feed) if any(feed) else None)
 
@@ -347,15 +349,12 @@ def test_exact_discretization_solves_the_ode():
 @pytest.mark.parametrize("mu,dt", [(0.01, 1e-3), (9e-3, 5e-3), (0.003, 0.02)])
 def test_foh_discretization_solves_the_ode(order, mu, dt):
     """Independent of both: over one period with the input the straight line from
-    ``e_0`` to ``e_1``, eq. HGD (RK4) ends at ``Phi z_0 + Gamma_0 e_0 + D e_1``; and
-    with ``e_1 = e_0`` (a held input) at the exact hold's ``Phi z_0 + Gamma e_0``."""
+    ``e_0`` to ``e_1``, eq. HGD (RK4) ends at ``Phi z_0 + Gamma e_0 + D (e_1 - e_0)``,
+    with ``Phi`` and ``Gamma`` the exact hold's (so with ``e_1 = e_0``, a held input,
+    it is the exact hold's ``Phi z_0 + Gamma e_0``)."""
     a = {2: [4.0, 4.0], 3: [4.0, 6.0, 4.0]}[order]
-    phi, gam0, feed = discretize_hgd(mu, a, dt, "foh", feedthrough=True)
-    phi_x, gam_x = discretize_hgd(mu, a, dt, "exact")
-    assert phi == phi_x
-    # Gamma_0 + D is the held input's Gamma (rounded twice; Gamma_0 ~ -D at dt >> mu)
-    scale = [abs(d) + mu**-i for i, d in enumerate(feed)]
-    assert all(abs(g + d - x) <= 1e-15 * s for g, d, x, s in zip(gam0, feed, gam_x, scale))
+    phi, gam, feed = discretize_hgd(mu, a, dt, "foh", feedthrough=True)
+    assert (phi, gam) == discretize_hgd(mu, a, dt, "exact")
 
     def rhs(z, e):
         innov = e - z[0]
@@ -376,7 +375,8 @@ def test_foh_discretization_solves_the_ode(order, mu, dt):
         k4 = rhs([x + h * q for x, q in zip(z, k3)], eb)
         z = [x + h / 6 * (p + 2 * q + 2 * r + s) for x, p, q, r, s in zip(z, k1, k2, k3, k4)]
     foh = [
-        g * e0 + d * e1 + sum(p * x for p, x in zip(row, z0)) for row, g, d in zip(phi, gam0, feed)
+        g * e0 + d * (e1 - e0) + sum(p * x for p, x in zip(row, z0))
+        for row, g, d in zip(phi, gam, feed)
     ]
     scale = [max(abs(x), mu**-i) for i, x in enumerate(z)]
     np.testing.assert_array_less(np.abs(np.subtract(foh, z)), 1e-10 * np.asarray(scale))
@@ -569,7 +569,7 @@ def test_foh_end_to_end_matches_core_at_coarse_rate(name, variant, prefilter):
 
 def test_foh_estimate_uses_the_current_sample():
     """The first-order hold's estimate of a sample moves with that sample (by ``D``),
-    the exact hold's does not; the stored vector ``W`` does not depend on it."""
+    the exact hold's does not; the stored vector ``V`` does not depend on it."""
     out = {}
     for method in ("exact", "foh"):
         hg = L.HighGain(FOH_MU, [4, 4], method)

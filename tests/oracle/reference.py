@@ -30,14 +30,15 @@ Discrete-time semantics (docs/design.md §3.2), in the order of ``step(e_k)``:
    zero-order hold, ``Phi``/``Gamma`` computed at construction; ``f_k`` the
    sample ``e_k``, or its low-pass value with a prefilter).
 
-With the first-order hold (``discretization="foh"``) the stored vector is
-``W_k`` and step 1 uses ``Zhat_k = W_k + D f_k`` at every step after the first
-(``D`` the feedthrough of this very sample, see :func:`discretize_hgd`; the
-first step's ``Zhat_0`` has none); step 3 stores
-``W_{k+1} = Phi Zhat_k + Gamma_0 f_k`` from the unlimited ``Zhat_k`` (the
-estimate limits only clip what the law sees). ``step_state`` runs the
-differentiator the same way; the restart of the recovery rule advances its seed
-with ``Gamma_0`` and no feedthrough.
+With the first-order hold (``discretization="foh"``) ``Phi`` and ``Gamma`` are
+the exact hold's, the stored vector is ``V_k`` and step 1 uses
+``Zhat_k = V_k + D (f_k - f_(k-1))`` at every step after the first (``D`` the
+feedthrough of the input's increment, see :func:`discretize_hgd`; the first
+step's ``Zhat_0`` has none); step 3 stores ``V_{k+1} = Phi Zhat_k + Gamma f_k``
+from the unlimited ``Zhat_k`` (the estimate limits only clip what the law
+sees). ``step_state`` runs the differentiator the same way. The restart of the
+recovery rule advances its seed as the exact hold does, and the sample after it
+adds no feedthrough (its clock starts a run at count 0, as the core's does).
 
 A rejected step (non-finite ``e`` or ``applied``, overflow) raises ``ValueError``
 and changes nothing, except an overflow after the first step (the recovery rule
@@ -511,8 +512,8 @@ def discretize_hgd(
     ``Zhat_{k+1} = Phi Zhat_k + Gamma_zoh e_k + D (e_{k+1} - e_k)`` with ``Phi`` and
     ``Gamma_zoh`` those of ``"exact"`` and
     ``D = (1/dt) integral_0^dt exp(M s) (dt - s) ds H``; the returned ``Gamma`` is
-    ``Gamma_0 = Gamma_zoh - D`` (what multiplies ``e_k``), ``D`` multiplies
-    ``e_{k+1}``. ``D0`` (balanced) is read from the exponential of the augmented
+    ``Gamma_zoh``, and ``D`` multiplies the increment ``e_{k+1} - e_k``. ``D0``
+    (balanced) is read from the exponential of the augmented
     ``[[M0, a, 0], [0, 0, 1], [0, 0, 0]] tau``, whose state ``(w, u, v)`` with
     ``u' = v``, ``v' = 0`` from ``(0, 0, 1)`` is driven by the ramp ``u = s``: its last
     column's top block is ``integral_0^tau exp(M0 (tau - s)) s ds a = tau D0``
@@ -556,7 +557,6 @@ def discretize_hgd(
             if max(abs(big[i][n] - g0[i]) for i in range(n)) > Decimal("1e-40"):
                 raise ArithmeticError("the augmented exponential disagrees with Gamma_zoh")
             d0 = [big[i][n + 1] / tau for i in range(n)]
-            g0 = [g - d for g, d in zip(g0, d0)]
         phi = tuple(tuple(float(phi0[i][j] * mu_d ** (j - i)) for j in range(n)) for i in range(n))
         gamma = tuple(float(g0[i] * mu_d ** (-i)) for i in range(n))
         feed = tuple(float(d0[i] * mu_d ** (-i)) for i in range(n))
@@ -768,8 +768,8 @@ class ReferenceController:
 
     @property
     def estimate(self) -> list:
-        """The estimate the next step will use (the stored ``W`` with the
-        first-order hold, before this sample's feedthrough)."""
+        """The estimate the next step will use (the stored ``V`` with the
+        first-order hold, before the feedthrough of the next increment)."""
         return list(self._zhat)
 
     def state(self) -> list:
@@ -950,12 +950,14 @@ class ReferenceController:
             out.append(acc)
         return out
 
-    def _current(self, w: Sequence[float], f: float) -> list:
+    def _current(self, v: Sequence[float], f: float) -> list:
         """The estimate of the sample whose differentiator input is ``f`` from the
-        stored ``w``: ``w + D f`` with the first-order hold, else ``w`` itself."""
-        if self.feedthrough is None:
-            return list(w)
-        return [x + d * f for x, d in zip(w, self.feedthrough)]
+        stored ``v``: ``v + D (f - f_prev)`` with the first-order hold, else ``v``
+        itself, and ``v`` itself on the sample after a restart (count 0)."""
+        if self.feedthrough is None or self._k == 0:
+            return list(v)
+        df = f - self._filtered
+        return [x + d * df for x, d in zip(v, self.feedthrough)]
 
     def step(self, e: float, applied: float | None = None) -> float:
         """One output-feedback step: error sample ``e`` in, control ``v`` out."""
@@ -1001,6 +1003,9 @@ class ReferenceController:
                 self._zhat, self._filtered = nxt, x
                 break
         self._k += 1
+        if self.feedthrough is not None:
+            # the next sample starts a run: no feedthrough onto the restart
+            self._t_base, self._k = self._t_base + float(self._k) * self.dt, 0
 
     def _finish(
         self, z: list, nxt: list, applied: float | None, seed: list, e: float, filtered: float

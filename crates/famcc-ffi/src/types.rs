@@ -350,9 +350,10 @@ pub type FamccConfigF32 = FamccConfig<f32>;
 /// `double` configuration.
 pub type FamccConfigF64 = FamccConfig<f64>;
 
-/// A differentiator's recursion `W_{k+1} = Phi Zhat_k + Gamma f_k`, with the
-/// estimate `Zhat_k = W_k + D f_k` (`D` the feedthrough, zero but for
-/// `FAMCC_DISCRETIZATION_FOH`), for one sample period (famcc-core's
+/// A differentiator's recursion `V_{k+1} = Phi Zhat_k + Gamma f_k`, with the
+/// estimate `Zhat_k = V_k + D (f_k - f_{k-1})` (`D` the feedthrough of the
+/// input's increment, zero but for `FAMCC_DISCRETIZATION_FOH`, whose `Phi`
+/// and `Gamma` are the exact hold's), for one sample period (famcc-core's
 /// `DiscreteHgd`): computed on a host by `*_discretize` and passed to
 /// `*_init_discretized` on a target, which then runs no matrix exponential
 /// (and links none). `feedthrough` is the last member, so the members

@@ -314,25 +314,33 @@ impl<T: Real, const N: usize> Controller<T, N> {
         self.held(f())
     }
 
-    /// The stored estimate plus the first-order hold's feedthrough `D f`
-    /// ([`crate::Discretization::Foh`]) of the sample's differentiator input
-    /// `f`, under the recursion of the period that just elapsed (the
-    /// previous step's: a one-off period is rediscretized). Out of line: the
-    /// other discretizations never call it.
+    /// The stored estimate plus the first-order hold's feedthrough
+    /// `D (f - f_prev)` ([`crate::Discretization::Foh`]) of the increment of
+    /// the sample's differentiator input `f` over the stored last input,
+    /// under the recursion of the period that just elapsed (the previous
+    /// step's: a one-off period is rediscretized). Out of line: the other
+    /// discretizations never call it.
     #[inline(never)]
     fn held(&self, f: T) -> [T; N] {
         let c = &self.config;
-        let w = &self.state.zhat;
+        let v = &self.state.zhat;
         let Some(d) = c.recursion() else {
-            return *w;
+            return *v;
         };
+        if self.state.clock.k == 0 {
+            // The last sample restarted the estimate (State::consume): the
+            // next one uses it as the exact hold would, the estimate the
+            // validation probe stepped from (recover.rs).
+            return *v;
+        }
+        let df = f - self.state.filtered;
         let period = self.state.clock.period;
         if crate::compiled::continues_run(c.dt(), period) {
-            return d.current(w, f);
+            return d.current(v, df);
         }
         match c.recursion_at(period) {
-            Some(Ok(r)) => r.current(w, f),
-            _ => d.current(w, f),
+            Some(Ok(r)) => r.current(v, df),
+            _ => d.current(v, df),
         }
     }
 

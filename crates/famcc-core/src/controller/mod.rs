@@ -102,6 +102,12 @@ impl<T: Real, const N: usize> State<T, N> {
         if self.started {
             (self.zhat, self.filtered) = recover::restarted(c, measured, hgd, cause);
             self.clock = clock_next;
+            if hgd.is_some_and(differentiator::Recursion::has_feedthrough) {
+                // The first-order hold: the next sample starts a run (count
+                // 0, which no sample after the first has otherwise), and
+                // `held` adds no increment to the restarted estimate then.
+                self.clock = Clock::at(clock_next.time(), 0, clock_next.period, c.settle_time());
+            }
         }
         StepError::Overflow
     }
@@ -179,8 +185,9 @@ impl<T: Real, const N: usize> Controller<T, N> {
     }
 
     /// The number of samples of the current run at one period (all the
-    /// samples so far when only the nominal `dt` was used), saturating at
-    /// `u64::MAX`.
+    /// samples so far when only the nominal `dt` was used, and, with the
+    /// first-order hold, no step overflowed: its restart starts a run),
+    /// saturating at `u64::MAX`.
     pub fn samples(&self) -> u64 {
         self.state.clock.k
     }

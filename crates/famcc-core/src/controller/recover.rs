@@ -13,6 +13,12 @@
 //! sample itself is the outlier), or when the update overflowed on a sample
 //! beyond the probe's range (`|e| > 1e3`), it restarts from a zero error.
 //!
+//! With the first-order hold ([`crate::Discretization::Foh`]) the next
+//! sample adds no feedthrough to the restarted estimate (its clock starts a
+//! run at count 0 to say so): otherwise every restart would meet the
+//! increment of a moving error with zero derivatives, and a law that
+//! overflows on that peaking would fail every sample.
+//!
 //! So the stored estimate is always in range, and a sample that the first
 //! step could use (validation guarantees that for `|e| <= 1e3`, §3.9) makes
 //! the next step's estimate one the law can use: after any finite input,

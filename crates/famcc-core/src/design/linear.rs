@@ -24,9 +24,12 @@ type Mat = [[f64; DIM]; DIM];
 /// uses, `Zhat_k = X_k[..n] + tail X_k[n] + direct e_k`, and the state's
 /// dimension `ne`.
 ///
-/// The state is the stored estimate `W` (the first-order hold's
-/// `Zhat_k = W_k + D f_k`, `W_{k+1} = Phi_h Zhat_k + Gamma_h f_k`, so
-/// `W_{k+1} = Phi_h W_k + (Phi_h D + Gamma_h) f_k`; `D = 0` for the other
+/// The state is `W_k = Zhat_k - D f_k`: the controller stores
+/// `V_k = W_k + D f_(k-1)` (its `DiscreteHgd::current`), an equivalent
+/// realization that needs the last input; with the held input's `Gamma`,
+/// `Gamma_h = Gamma - D`, the first-order hold is `Zhat_k = W_k + D f_k`,
+/// `W_{k+1} = Phi_h Zhat_k + Gamma_h f_k`, so
+/// `W_{k+1} = Phi_h W_k + (Phi_h D + Gamma_h) f_k` (`D = 0` for the other
 /// discretizations), and with the prefilter also the last input `f_(k-1)`
 /// (`ne = n + 1`): `f_k = a f_(k-1) + b e_k` (`b` the prefilter's gain,
 /// `a = 1 - b`).
@@ -94,10 +97,14 @@ fn plain_hgd(d: &Design, n: usize, dt: f64) -> Result<(Mat, [f64; DIM], [f64; DI
         for (row, src) in phi.iter_mut().zip(h.phi.iter()) {
             row.iter_mut().zip(src.iter()).for_each(|(x, y)| *x = *y);
         }
-        gamma.iter_mut().zip(h.gamma.iter()).for_each(|(x, y)| *x = *y);
         feed.iter_mut()
             .zip(h.feedthrough.iter())
             .for_each(|(x, y)| *x = *y);
+        // The W realization's Gamma (Sampled): the held input's less D.
+        gamma
+            .iter_mut()
+            .zip(h.gamma.iter().zip(feed.iter()))
+            .for_each(|(x, (g, d))| *x = g - d);
         Ok((phi, gamma, feed))
     }
     match n {

@@ -41,10 +41,10 @@ pub(super) fn discretize<T: Real, const N: usize>(
         Discretization::Exact => expm_zoh(&m0, &a, tau).ok_or(Failure::Singular)?,
         Discretization::Foh => {
             let (phi0, zoh) = expm_zoh(&m0, &a, tau).ok_or(Failure::Singular)?;
+            // Gamma stays the held input's: the controller adds the
+            // feedthrough to the input's increment (DiscreteHgd::feedthrough).
             feed0 = ramp_response(&m0, &a, &zoh, tau, m).ok_or(Failure::Singular)?;
-            let mut held = zoh;
-            held.iter_mut().zip(feed0.iter()).for_each(|(g, d)| *g -= d);
-            (phi0, held)
+            (phi0, zoh)
         }
         Discretization::Euler => {
             let mut phi0 = identity::<N>();

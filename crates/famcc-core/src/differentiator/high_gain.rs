@@ -29,9 +29,9 @@ pub enum Discretization {
     Tustin,
     /// First-order (triangle) hold: the measurement is taken as the straight
     /// line through the samples, so the estimate at sample `k` uses `e_k`
-    /// itself. `Phi` as [`Discretization::Exact`]; the held input's
-    /// `Gamma_zoh` splits into the part `Gamma_0` of `e_(k-1)` and the direct
-    /// feedthrough `D = (1/dt) (integral_0^dt exp(M s) (dt - s) ds) H` of `e_k`
+    /// itself. `Phi` and `Gamma` as [`Discretization::Exact`], and the direct
+    /// feedthrough `D = (1/dt) (integral_0^dt exp(M s) (dt - s) ds) H` of the
+    /// increment `e_k - e_(k-1)`
     /// ([`DiscreteHgd::feedthrough`](super::DiscreteHgd::feedthrough)). Exact
     /// for a piecewise-linear measurement and stable for every `dt`: it
     /// removes the sample of delay that the held (ZOH) input adds, which is

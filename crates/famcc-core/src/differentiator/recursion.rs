@@ -25,9 +25,13 @@ pub struct DiscreteHgd<T, const N: usize> {
     pub prefilter: T,
     /// The direct feedthrough `D` of the first-order hold
     /// ([`Discretization::Foh`](super::Discretization::Foh)); zeros for the
-    /// other discretizations. With it the recursion stores `W_k` and the
-    /// estimate of sample `k` is `Zhat_k = W_k + D f_k`
-    /// ([`DiscreteHgd::current`]), `W_(k+1) = Phi Zhat_k + Gamma f_k`.
+    /// other discretizations. With it `gamma` is the held input's (the exact
+    /// hold's), the recursion stores `V_k = Phi Zhat_(k-1) + Gamma f_(k-1)`
+    /// ([`DiscreteHgd::advance`]) and the estimate of sample `k` is
+    /// `Zhat_k = V_k + D (f_k - f_(k-1))` ([`DiscreteHgd::current`]): the
+    /// straight line through the samples adds to the held input's response
+    /// only through the increment, so a constant input is the exact hold's,
+    /// bit for bit, and a large level does not cancel in `f32`.
     pub feedthrough: [T; N],
 }
 
@@ -45,20 +49,22 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
         Recursion::new(self).advance(zhat, e)
     }
 
-    /// The estimate of the sample whose (prefiltered) input is `f`, from the
-    /// stored `w`: `w + D f` with the first-order hold's feedthrough `D`,
-    /// and `w` itself (bit for bit) for the other discretizations.
+    /// The estimate of the sample whose (prefiltered) input changed by
+    /// `df = f_k - f_(k-1)`, from the stored `v`: `v + D df` with the
+    /// first-order hold's feedthrough `D`, and `v` itself (bit for bit) for
+    /// the other discretizations.
     ///
     /// ```
     /// use famcc_core::DiscreteHgd;
     /// let d = DiscreteHgd { phi: [[0.5_f64]], gamma: [0.25], prefilter: 1.0, feedthrough: [0.25] };
     /// assert_eq!(d.current(&[1.0], 2.0), [1.5]);
+    /// assert_eq!(d.current(&[1.0], 0.0), [1.0]); // a constant input: v itself
     /// let held = DiscreteHgd { feedthrough: [0.0], ..d };
     /// assert_eq!(held.current(&[-0.0], 2.0)[0].to_bits(), (-0.0_f64).to_bits());
     /// ```
     #[inline]
-    pub fn current(&self, w: &[T; N], f: T) -> [T; N] {
-        Recursion::new(self).current(w, f)
+    pub fn current(&self, v: &[T; N], df: T) -> [T; N] {
+        Recursion::new(self).current(v, df)
     }
 
     /// The differentiator's input for the sample `e` after the input `last`
@@ -202,10 +208,10 @@ impl<T: Real, const N: usize> Recursion<T, N> {
 
     /// [`DiscreteHgd::current`].
     #[inline(always)]
-    pub(crate) fn current(&self, w: &[T; N], f: T) -> [T; N] {
-        let mut z = *w;
+    pub(crate) fn current(&self, v: &[T; N], df: T) -> [T; N] {
+        let mut z = *v;
         if let Some(d) = &self.feedthrough {
-            z.iter_mut().zip(d.iter()).for_each(|(z, d)| *z = *z + *d * f);
+            z.iter_mut().zip(d.iter()).for_each(|(z, d)| *z = *z + *d * df);
         }
         z
     }

@@ -99,7 +99,8 @@ fn spec(order: usize) -> impl Strategy<Value = Spec> {
     let hgd = prop_oneof![
         1 => Just(None),
         4 => (0.005..0.05f64, prop_oneof![
-            Just(Discretization::Exact), Just(Discretization::Euler), Just(Discretization::Tustin)
+            Just(Discretization::Exact), Just(Discretization::Euler), Just(Discretization::Tustin),
+            Just(Discretization::Foh)
         ]).prop_map(Some),
     ];
     let limits = prop_oneof![

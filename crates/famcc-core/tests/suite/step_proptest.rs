@@ -135,6 +135,7 @@ fn spec(n: usize) -> impl Strategy<Value = Spec> {
                     3 => Just(Discretization::Exact),
                     1 => Just(Discretization::Euler),
                     1 => Just(Discretization::Tustin),
+                    1 => Just(Discretization::Foh),
                 ],
             ),
         ),

@@ -446,8 +446,8 @@ fn inv(a: &M2) -> M2 {
 /// - exact: `exp(M t) = e^(lambda t) (I + (M - lambda I) t)`, `Gamma = M^-1 (Phi - I) H`;
 /// - Euler: `Phi = I + M dt`, `Gamma = H dt`;
 /// - Tustin: `Phi = (I - M dt/2)^-1 (I + M dt/2)`, `Gamma = (I - M dt/2)^-1 H dt`;
-/// - first-order hold: exact's `Phi`, the feedthrough
-///   `D = M^-1 (Gamma_exact - H dt) / dt` and `Gamma = Gamma_exact - D`.
+/// - first-order hold: exact's `Phi` and `Gamma`, and the feedthrough
+///   `D = M^-1 (Gamma_exact - H dt) / dt` of the input's increment.
 ///
 /// Returns `(Phi, Gamma, D)` (`D = 0` but for the first-order hold).
 fn closed_form(a1: f64, mu: f64, dt: f64, d: Discretization) -> (M2, [f64; 2], [f64; 2]) {
@@ -471,7 +471,7 @@ fn closed_form(a1: f64, mu: f64, dt: f64, d: Discretization) -> (M2, [f64; 2], [
         Discretization::Foh => {
             let (phi, g, _) = closed_form(a1, mu, dt, Discretization::Exact);
             let r = mv(&inv(&m), [(g[0] - h[0] * dt) / dt, (g[1] - h[1] * dt) / dt]);
-            (phi, [g[0] - r[0], g[1] - r[1]], r)
+            (phi, g, r)
         }
         Discretization::Exact => {
             let lam = -a1 / (2.0 * mu);
@@ -540,7 +540,7 @@ fn discretizations_match_their_closed_forms() {
 }
 
 /// Every discretization has DC gain 1: a constant measurement `c` is the fixed
-/// point `(c, 0, ..., 0)`, i.e. `Phi_i0 + Gamma_i + D_i = [i = 0]` (and `Phi`
+/// point `(c, 0, ..., 0)`, i.e. `Phi_i0 + Gamma_i = [i = 0]` (and `Phi`
 /// otherwise leaves it alone), at orders 2 to 4.
 #[test]
 fn discretizations_have_unit_dc_gain() {
@@ -550,8 +550,9 @@ fn discretizations_have_unit_dc_gain() {
                 let h = HighGain::new(0.01, a, d).discretize(dt).unwrap();
                 let mut fixed = [0.0; N];
                 fixed[0] = 1.5;
-                // (the first-order hold's estimate adds the next sample's feedthrough)
-                let next = h.current(&h.advance(&fixed, 1.5), 1.5);
+                // (the first-order hold's estimate adds the feedthrough of
+                // the input's increment: none for a constant)
+                let next = h.current(&h.advance(&fixed, 1.5), 0.0);
                 for (i, x) in next.iter().enumerate() {
                     let want = if i == 0 { 1.5 } else { 0.0 };
                     let tol = 1e-9 * 0.01f64.powi(-(i as i32)).max(1.0);
@@ -566,7 +567,7 @@ fn discretizations_have_unit_dc_gain() {
 }
 
 /// Output feedback, order 2, LoMC with a linear law: every step's `z_hat` is the
-/// closed-form recursion `Zhat_{k+1} = Phi Zhat_k + Gamma e_k + D e_(k+1)` from
+/// closed-form recursion `Zhat_{k+1} = Phi Zhat_k + Gamma e_k + D (e_(k+1) - e_k)` from
 /// `Zhat_0 = (e_0, d_2)`, and its `xi` and `v` follow from it by hand (with
 /// the flexible boundary of eq. (30), `rho_e = 0.01`); also with the estimate
 /// limits, which clip `z_hat` before the law.
@@ -631,7 +632,8 @@ fn output_feedback_steps_follow_the_closed_form_recursion() {
                     let next = mv(&phi, zhat);
                     stored = [next[0] + g[0] * e, next[1] + g[1] * e];
                     let e_next = es.get(i + 1).copied().unwrap_or(0.0);
-                    zhat = [stored[0] + feed[0] * e_next, stored[1] + feed[1] * e_next];
+                    let de = e_next - e;
+                    zhat = [stored[0] + feed[0] * de, stored[1] + feed[1] * de];
                 }
                 for j in 0..2 {
                     near(
@@ -1071,7 +1073,7 @@ fn single_ended_jet_keeps_normal_derivatives_where_the_value_is_subnormal() {
 }
 
 /// The first-order hold: each step's estimate is the stored one plus the
-/// feedthrough `D f_k` of the period that just elapsed, also when that period
+/// feedthrough `D (f_k - f_(k-1))` of the period that just elapsed, also when that period
 /// was a one-off (`step_dt`), and in state feedback the differentiator keeps
 /// running the same recursion. Checked against `DiscreteHgd`'s own `advance`
 /// and `current` at the periods used.
@@ -1107,7 +1109,7 @@ fn first_order_hold_adds_the_elapsed_periods_feedthrough() {
         }
         let zhat = match elapsed {
             None => w,
-            Some(q) => (if q == dt { nominal } else { one_off }).current(&w, e),
+            Some(q) => (if q == dt { nominal } else { one_off }).current(&w, e - es[k - 1]),
         };
         let got = c.diagnostics().z_hat;
         assert_eq!(got, zhat, "step {k}");
@@ -1123,5 +1125,8 @@ fn first_order_hold_adds_the_elapsed_periods_feedthrough() {
     assert_eq!(*s.estimate(), w1);
     s.step_state([0.2, -1.0]).unwrap();
     assert_eq!(s.diagnostics().z_hat, [0.2, -1.0]);
-    assert_eq!(*s.estimate(), nominal.advance(&nominal.current(&w1, 0.2), 0.2));
+    assert_eq!(
+        *s.estimate(),
+        nominal.advance(&nominal.current(&w1, 0.2 - 0.3), 0.2)
+    );
 }
