@@ -8,7 +8,7 @@
 //! names the feature (tests/compiled_out.rs).
 
 use crate::error::ConfigError;
-use crate::{Constraint, Feedback, SkewKind, Transition};
+use crate::{Constraint, Discretization, Feedback, SkewKind, Transition};
 
 /// `Err` naming the feature when `parameter`'s variant is compiled out.
 const fn require(compiled: bool, parameter: &'static str, rule: &'static str) -> Result<(), ConfigError> {
@@ -84,6 +84,25 @@ pub(crate) fn options(initial_output: bool, integral: bool) -> Result<(), Config
         !integral || cfg!(feature = "integral"),
         "integral",
         "(integral action) is compiled out of this build: enable famcc-core's Cargo feature `integral`",
+    )
+}
+
+/// True when the first-order hold is compiled: without it no recursion has a
+/// feedthrough, and the step's and the restart's code for it is gone.
+pub(crate) const FIRST_ORDER_HOLD: bool = cfg!(feature = "first-order-hold");
+
+/// The error of a differentiator (or a precomputed recursion) with the
+/// first-order hold in a build without it.
+pub(crate) const FOH_COMPILED_OUT: &str =
+    "foh (the first-order hold) is compiled out of this build: enable famcc-core's Cargo feature \
+     `first-order-hold`";
+
+/// Checks that the discretization `d` is compiled into this build.
+pub(crate) fn discretization(d: Discretization) -> Result<(), ConfigError> {
+    require(
+        FIRST_ORDER_HOLD || d != Discretization::Foh,
+        "discretization",
+        FOH_COMPILED_OUT,
     )
 }
 

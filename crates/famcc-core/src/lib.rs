@@ -59,6 +59,7 @@
 //! | `bumpless` | the bumpless start ([`ConfigBuilder::initial_output`]) |
 //! | `integral` | integral action ([`ConfigBuilder::integral`]) |
 //! | `one-off-period` | steps at another period than `dt` ([`Controller::step_dt`]), and restoring a state taken at one; without it the clock never leaves `T` (no soft-float `f64` on a single-precision FPU) |
+//! | `first-order-hold` | the differentiator's [`Discretization::Foh`] (its feedthrough in the step, and its restart, which starts a clock run in `f64`) |
 #![no_std]
 #![forbid(unsafe_code)]
 #![cfg_attr(

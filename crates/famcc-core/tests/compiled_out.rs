@@ -5,7 +5,7 @@
 //! (everything compiled: every design builds) and
 //! `--no-default-features` (every optional variant rejected).
 
-use famcc_core::{Config, Constraint, Controller, Feedback, HighGain, Skew, Transition};
+use famcc_core::{Config, Constraint, Controller, Discretization, Feedback, HighGain, Skew, Transition};
 
 type Stage = (Feedback<f32>, Option<Skew<f32>>);
 
@@ -130,6 +130,16 @@ fn each_optional_variant_builds_exactly_when_its_feature_is_compiled() {
         option(plain.integral(true)),
         cfg!(feature = "integral"),
     );
+    let foh = HighGain {
+        discretization: Discretization::Foh,
+        ..HighGain::paper()
+    };
+    check(
+        "first-order hold",
+        "first-order-hold",
+        option(plain.differentiator(Some(foh))),
+        cfg!(feature = "first-order-hold"),
+    );
     // A sine skew needs both features: without `skew` the skew is named first.
     if cfg!(feature = "skew") {
         let built = build((FINITE, Some(sine_skew)), LONGITUDINAL, exp);
@@ -159,6 +169,26 @@ fn a_one_off_period_steps_exactly_when_its_feature_is_compiled() {
     if let Err(e) = restored {
         assert!(e.to_string().contains("Cargo feature `one-off-period`"), "{e}");
     }
+}
+
+/// A precomputed recursion with the first-order hold's feedthrough (computed
+/// on a host that has it) is rejected where the hold is compiled out, not
+/// run without its feedthrough.
+#[test]
+fn a_precomputed_first_order_hold_runs_exactly_when_its_feature_is_compiled() {
+    let mut d = HighGain::<f32, 2>::paper()
+        .discretize(1e-3)
+        .unwrap_or_else(|e| panic!("{e}"));
+    d.feedthrough = [0.5, 25.0];
+    let built = Config::<f32, 2>::builder(1e-3, &[(FINITE, None)], LONGITUDINAL, 5.0)
+        .differentiator(Some(HighGain::paper()))
+        .build_discretized(d);
+    check(
+        "precomputed first-order hold",
+        "first-order-hold",
+        built,
+        cfg!(feature = "first-order-hold"),
+    );
 }
 
 #[test]

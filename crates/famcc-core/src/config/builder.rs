@@ -339,6 +339,7 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         }
         let plant_order = N - usize::from(self.integral);
         if let Some(h) = &self.differentiator {
+            crate::compiled::discretization(h.discretization)?;
             if hurwitz {
                 h.validate_order(plant_order)?;
             } else {

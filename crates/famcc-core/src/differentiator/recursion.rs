@@ -155,6 +155,9 @@ impl<T: Real, const N: usize> DiscreteHgd<T, N> {
                 "is unstable (spectral radius of Phi >= 1): precompute it with HighGain::discretize_order",
             ));
         }
+        if !crate::compiled::FIRST_ORDER_HOLD && self.feedthrough.iter().any(|v| *v != T::zero()) {
+            return Err(ConfigError::new("discretized", crate::compiled::FOH_COMPILED_OUT));
+        }
         Ok(())
     }
 }
@@ -203,7 +206,7 @@ impl<T: Real, const N: usize> Recursion<T, N> {
     /// True for a first-order hold (a feedthrough to add).
     #[inline(always)]
     pub(crate) fn has_feedthrough(&self) -> bool {
-        self.feedthrough.is_some()
+        crate::compiled::FIRST_ORDER_HOLD && self.feedthrough.is_some()
     }
 
     /// [`DiscreteHgd::current`].
