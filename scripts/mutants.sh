@@ -2,7 +2,7 @@
 # Mutation testing with cargo-mutants (docs/mutation.md): famcc-core against
 # its own tests, and the C ABI (crates/famcc-ffi) against its unit tests.
 #
-#   scripts/mutants.sh               the seeded slice that ./scripts/test.sh runs: the
+#   scripts/mutants.sh               the seeded slice that nox -s mutants runs: the
 #                                    round-robin shard MUTANTS_SEED % MUTANTS_SHARDS of
 #                                    MUTANTS_SHARDS of famcc-core's mutants (~2;
 #                                    MUTANTS_OUT names the report directory)
@@ -86,8 +86,9 @@ slice)
         "(MUTANTS_SEED=$seed, MUTANTS_SHARDS=$shards)"
     # The sample is taken from every mutant, triaged or not, so that it stays
     # put when the triage list grows; a triaged survivor passes below. The
-    # test command has just run the same tests unmutated: no baseline, a
-    # fixed timeout per mutant instead (a mutant whose tests hang is caught).
+    # test command (.ci/run runs it first) has just run the same tests
+    # unmutated: no baseline, a fixed timeout per mutant instead (a mutant
+    # whose tests hang is caught).
     rc=0
     mkdir -p "target/mutants/${MUTANTS_OUT:-slice}"
     cargo mutants --no-shuffle --output "target/mutants/${MUTANTS_OUT:-slice}" "${all_tests[@]}" \

@@ -226,6 +226,7 @@ def test_results_do_not_depend_on_chunks_or_executor():
     assert not np.array_equal(_ex1(seed=12).table["gain"], a.table["gain"])
 
 
+@pytest.mark.cluster  # dask and distributed: the cluster extra (tests/conftest.py)
 def test_dask_cluster_gives_the_same_2000_cases_as_local_processes():
     distributed = importlib.import_module("distributed")
     t0 = time.perf_counter()
@@ -338,25 +339,6 @@ def test_every_criterion_can_fail_and_be_untested():
         assert weak.rate("nominal").failed > 0
     good = _ex1(u_limits=(-100.0, 100.0), settle_by="bound", t_end=4.0)
     assert good.rate("settled").held > 0
-
-
-def test_without_bank_diagnostics_nominal_is_untested(monkeypatch):
-    class OldBank:  # a ControllerBank without xi_nominal / expansion (an older binding)
-        def __init__(self, ctrl, n):
-            self._bank = famcc._core.ControllerBank(ctrl, n)
-
-        def step(self, e):
-            return self._bank.step(e)
-
-        @property
-        def overflows(self):
-            return self._bank.overflows
-
-    monkeypatch.setattr(famcc, "ControllerBank", OldBank)
-    res = _ex1()
-    assert res.rate("nominal").untested == res.n
-    assert np.all(np.isnan(res.table["max_abs_xi_nominal"]))
-    assert res.rate("settled").tested == res.n
 
 
 def test_bound_deadline_follows_the_corollary():

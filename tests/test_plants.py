@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 from famcc import plants
-from famcc._jet import Jet
+from famcc.plants.jets import Jet
 
 PAPER_PLANTS = [
     pytest.param(plants.second_order, "paper", id="second-paper"),
@@ -203,33 +203,60 @@ def test_gain_and_drift_predict_the_nth_derivative_for_two_inputs(factory, varia
         assert err < 5e-8, (u, err)  # measured <= 7e-9
 
 
+def paper_oracle(order, gain, amp):
+    """The paper's equations restated here, as the generic strict-feedback plant: an
+    independent oracle for famcc-paper's closed forms (eq. System_sim, System_sim3 with
+    the factor x2 restored)."""
+    sin, cos, b, a = np.sin, np.cos, gain, amp
+    if order == 2:
+        g = [
+            lambda x, t: 1.0 + 0.1 * cos(x[0]) + 0.1 * sin(t),
+            lambda x, t: b * (2.0 + 0.2 * sin(x[0] * x[1]) + 0.1 * cos(t)),
+        ]
+        f = [
+            lambda x, t: -x[0] + sin(t),
+            lambda x, t: -(x[0] * x[0] - 1.0) * x[1] + a * sin(t) + a * cos(2.0 * t),
+        ]
+    else:
+        g = [
+            lambda x, t: 1.0 + 0.1 * sin(x[0]) + 0.1 * cos(t),
+            lambda x, t: 1.0 + 0.1 * cos(x[0] * x[1]) + 0.1 * sin(t),
+            lambda x, t: b * (2.0 + 0.2 * sin(x[0] * x[1] * x[2]) + 0.1 * cos(t)),
+        ]
+        f = [
+            lambda x, t: -x[0] + cos(t),
+            lambda x, t: -(x[0] * x[0] - 1.0) * x[1] + sin(t),
+            lambda x, t: -(x[0] * x[0] + x[1]) * x[2] + a * sin(t) + a * cos(2.0 * t),
+        ]
+    return plants.StrictFeedback(g, f, np.zeros(order))
+
+
 @pytest.mark.parametrize(("factory", "variant"), PAPER_PLANTS)
 def test_closed_forms_agree_with_the_generic_jet_computation(factory, variant):
-    plant = factory(variant)
-    generic = plants.StrictFeedback
     rng = np.random.default_rng(4)
     for _ in range(25):
+        gain, amp = rng.uniform(0.5, 2.0), rng.uniform(0.0, 12.0)
+        plant = factory(variant, gain=gain, amp=amp)
+        oracle = paper_oracle(plant.order, gain, amp)
         t, x = rng.uniform(0, 10), rng.normal(size=plant.order) * 2
         np.testing.assert_allclose(
-            plant.output_derivatives(t, x),
-            generic.output_derivatives(plant, t, x),
-            rtol=1e-12,
-            atol=1e-12,
+            plant.output_derivatives(t, x), oracle.output_derivatives(t, x), rtol=1e-12, atol=1e-12
         )
         np.testing.assert_allclose(
-            plant.gain_and_drift(t, x), generic.gain_and_drift(plant, t, x), rtol=1e-12, atol=1e-11
+            plant.gain_and_drift(t, x), oracle.gain_and_drift(t, x), rtol=1e-12, atol=1e-11
         )
         np.testing.assert_allclose(
-            plant.rhs(t, x, 0.7), generic.rhs(plant, t, x, 0.7), rtol=1e-13, atol=1e-13
+            plant.rhs(t, x, 0.7), oracle.rhs(t, x, 0.7), rtol=1e-13, atol=1e-13
         )
 
 
 @pytest.mark.parametrize(("factory", "variant"), PAPER_PLANTS)
 def test_total_gain_is_the_product_of_the_gains(factory, variant):
     plant = factory(variant)
+    oracle = paper_oracle(plant.order, 1.0, plant.params["amp"])
     t, x = 0.4, plant.x0
     gain, _ = plant.gain_and_drift(t, x)
-    expected = np.prod([g(x, t) for g in plant.g])
+    expected = np.prod([g(x, t) for g in oracle.g])
     assert gain == pytest.approx(expected, rel=1e-14)
     assert gain > 0
 

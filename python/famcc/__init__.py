@@ -46,7 +46,9 @@ from famcc._core import (
 )
 from famcc.campaigns import CampaignResult, campaign
 from famcc.reporting import report, reproduce
-from famcc.simulation import Constant, SimResult, Sine, Summary, simulate
+from famcc.signals import Constant, Sine
+from famcc.sim import SimResult, simulate
+from famcc.summary import Summary
 from famcc.tuning import Design, Finding, design, tune
 
 __all__ = [

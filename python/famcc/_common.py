@@ -1,5 +1,9 @@
 """Small shared pieces: named signals with units, and famcc's warning classes.
 
+:class:`FamccWarning` and :class:`DesignWarning` are the compiled extension's
+(``famcc._core``, which emits them without importing this module);
+:class:`DefaultReferenceWarning` is defined here.
+
 >>> angle = Signal.of(("angle", "rad"), "y")
 >>> angle.name, angle.unit, angle.derivative_unit(2)
 ('angle', 'rad', 'rad/s²')
@@ -12,17 +16,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from famcc._core import DesignWarning, FamccWarning
+
 __all__ = ["DefaultReferenceWarning", "DesignWarning", "FamccWarning", "Signal"]
 
 _SUPERSCRIPTS = {2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹"}
-
-
-class FamccWarning(UserWarning):
-    """Base class of the warnings famcc itself emits.
-
-    The test suite turns every one of them into an error, so that a warning
-    that famcc's own code triggers is either fixed or expected explicitly.
-    """
 
 
 class DefaultReferenceWarning(FamccWarning, FutureWarning):
@@ -100,12 +98,3 @@ class Signal:
         """``" [unit]"`` of the ``k``-th derivative, or ``""`` when the unit is unknown."""
         unit = self.derivative_unit(k)
         return "" if unit is None else f" [{unit}]"
-
-
-class DesignWarning(FamccWarning):
-    """A legal but risky choice (or a requirement a design cannot meet).
-
-    Emitted by :func:`famcc.design` for every finding that is not ok, and by
-    :class:`famcc.Controller` for risky configurations; the message names the
-    parameter, the rule and a suggested value.
-    """

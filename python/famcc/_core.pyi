@@ -14,16 +14,22 @@ from numpy.typing import NDArray
 __all__ = [
     "MAX_ORDER",
     "STATE_FIELDS",
+    "ArgumentTypeError",
     "ConfigError",
     "Controller",
     "ControllerBank",
+    "ControllerSpec",
+    "DesignWarning",
     "Diagnostics",
+    "FamccWarning",
     "FiniteTime",
     "FixedTime",
     "HighGain",
     "Linear",
+    "Lockstep",
     "MoulayDiscontinuous",
     "Nonsingular",
+    "PaperLanes",
     "PaperPlant",
     "Skewed",
     "Smooth",
@@ -32,6 +38,7 @@ __all__ = [
     "_CallFloor",
     "__version__",
     "_controller_from_state",
+    "_controller_spec_from_kwargs",
     "design_rules",
     "finite_time",
     "fixed_time",
@@ -70,13 +77,116 @@ _DType: TypeAlias = Literal["float64", "float32"]
 # and its text signatures spell them out (tests/test_docs.py checks that they agree).
 
 class ConfigError(ValueError):
-    """An invalid configuration value; the message names the parameter and the rule."""
+    """An invalid configuration value; the message names the parameter and the rule.
+
+    A ``ValueError``: ``str(error)`` is the message; the fields say the same for a program.
+
+    Parameters
+    ----------
+    *args
+        The message, as for any exception.
+    parameter : str, optional
+        The parameter's name.
+    stage : int, optional
+        The stage of a per-stage parameter, from 1.
+    rule : str, optional
+        The rule the value broke.
+
+    Attributes
+    ----------
+    parameter : str or None
+        The parameter's name as in the API (``'eps'``, ``'k_u'``, ``'feedback'``,
+        ``'differentiator.a'``); None when no single parameter is at fault.
+    stage : int or None
+        For a per-stage parameter (``feedback``, ``skew``, a stage's own values), the
+        stage, counted from 1 as in the message ``'stage 1: ...'``; None otherwise.
+    rule : str or None
+        The rule the value broke, e.g. ``'must be finite and > 0'``; None when the
+        message has no separate rule.
+
+    Examples
+    --------
+    >>> import famcc
+    >>> try:
+    ...     famcc.Linear(0.0)
+    ... except famcc.ConfigError as error:
+    ...     print(error, '|', error.parameter, '|', error.rule)
+    k must be finite and > 0 | k | must be finite and > 0
+    """
+
+    parameter: str | None
+    stage: int | None
+    rule: str | None
+    def __init__(
+        self,
+        *args: object,
+        parameter: str | None = None,
+        stage: int | None = None,
+        rule: str | None = None,
+    ) -> None: ...
 
 class StepError(ValueError):
     """A step that could not be taken (non-finite input, bad ``dt``, overflow).
 
     For a non-finite ``e``, ``applied`` or ``dt`` the state is unchanged; an overflow on a valid sample after the first step consumes the sample (hold the previous output).
+
+    Parameters
+    ----------
+    *args
+        The message, as for any exception.
+    kind : str, optional
+        What went wrong (see ``kind`` below).
+    parameter : str, optional
+        The input at fault.
+
+    Attributes
+    ----------
+    kind : str or None
+        One stable name per cause: ``'non-finite-input'``, ``'non-finite-applied'``,
+        ``'invalid-dt'``, ``'no-differentiator'``, ``'overflow'`` (famcc-core's ``StepError``),
+        ``'wrong-length'`` (a vector of the wrong length) and ``'wrong-type'`` (an input that is
+        not a float vector).
+    parameter : str or None
+        The input at fault (``'e'``, ``'y'``, ``'y_d'``, ``'z'``, ``'applied'``, ``'dt'``,
+        ``'differentiator'``); None when no single input is (an overflow).
+
+    Examples
+    --------
+    >>> import famcc
+    >>> ctrl = famcc.Controller(1, 1e-3, constraint='longitudinal', eps=0.1, k_u=1.0)
+    >>> try:
+    ...     ctrl.step(float('nan'))
+    ... except famcc.StepError as error:
+    ...     print(error.kind, error.parameter)
+    non-finite-input e
     """
+
+    kind: str | None
+    parameter: str | None
+    def __init__(
+        self, *args: object, kind: str | None = None, parameter: str | None = None
+    ) -> None: ...
+
+class FamccWarning(UserWarning):
+    """Base class of the warnings famcc itself emits.
+
+    The test suite turns every one of them into an error, so that a warning that famcc's own code triggers is either fixed or expected explicitly.
+    """
+
+class DesignWarning(FamccWarning):
+    """A legal but risky choice (or a requirement a design cannot meet).
+
+    Emitted by :func:`famcc.design` for every finding that is not ok, and by :class:`famcc.Controller` for risky configurations; the message names the parameter, the rule and a suggested value.
+    """
+
+class ArgumentTypeError(TypeError):
+    """A ``TypeError`` whose message names the argument.
+
+    The compiled constructors raise it for an argument of the wrong type (a ``bool`` where a number is meant, a ``str`` for a float, ...): ``str(error)`` reads ``argument 'dt': must be a real number, not bool``.
+    """
+
+    def add_note(self, note: str, /) -> None:
+        """A method of a class made at run time (binds the instance on access)."""
 
 # -- feedback laws -------------------------------------------------------------
 
@@ -1098,9 +1208,188 @@ class Controller:
         """
     def __copy__(self) -> Controller: ...
     def __deepcopy__(self, _memo: Any) -> Controller: ...
+    def replace(
+        self,
+        *,
+        dt: float = ...,
+        feedback: _Law | Sequence[_Law] | None = ...,
+        skew: _Skew | Sequence[_Skew | None] | None = ...,
+        eps: float | tuple[float, float] = ...,
+        settle_time: float = ...,
+        k0: float = ...,
+        k_u: float = ...,
+        gamma: _Gamma = ...,
+        rho_e: float | Literal["auto"] | None = ...,
+        differentiator: HighGain | Literal["auto"] | None = ...,
+        latch: _Latch = ...,
+        transition: _Transition = ...,
+        initial_derivatives: Sequence[float] | None = ...,
+        dtype: _DType = ...,
+        output_limits: tuple[float, float] | None = ...,
+        rate_limit: float | None = ...,
+        initial_output: float | None = ...,
+    ) -> Controller:
+        """A fresh controller with this configuration and the named fields changed.
+
+        The configuration is copied as parsed (no keyword arguments, no text):
+        ``ctrl.replace(k_u=8.0)`` equals
+        ``Controller(**{**ctrl.config(), 'k_u': 8.0})`` and is cheaper. The
+        new controller starts from the beginning (no state is copied); its
+        values are checked by famcc-core as in the constructor, and its risky
+        choices warn as there.
+
+        Parameters
+        ----------
+        **overrides
+            Keyword arguments of :class:`Controller`, with the same types and
+            meanings: ``dt``, ``feedback``, ``skew``, ``eps``, ``settle_time``,
+            ``k0``, ``k_u``, ``gamma``, ``rho_e``, ``differentiator``, ``latch``,
+            ``transition``, ``initial_derivatives``, ``dtype``, ``output_limits``,
+            ``rate_limit``, ``initial_output``. Not ``order``, ``constraint`` or
+            ``integral``, which set the shape of the configuration (build a new
+            controller for those). ``rho_e`` keeps the margin in effect (as
+            ``config()`` shows it) unless given; ``rho_e='auto'`` derives it
+            anew from ``eps``.
+
+        Returns
+        -------
+        Controller
+            The new controller.
+
+        Raises
+        ------
+        famcc.ConfigError
+            A value the constructor would reject (the message names it).
+        TypeError
+            An unknown keyword, one of ``order``, ``constraint``, ``integral``,
+            or a value of the wrong type.
+
+        Warns
+        -----
+        famcc.DesignWarning
+            For a legal but risky configuration, as the constructor.
+
+        Examples
+        --------
+        >>> import famcc
+        >>> ctrl = famcc.Controller(2, 1e-3, famcc.Linear(2.0), constraint="lateral", eps=0.1, k_u=5.0)
+        >>> faster = ctrl.replace(k_u=8.0)
+        >>> faster.config()["k_u"], ctrl.config()["k_u"]
+        (8.0, 5.0)
+        """
     def __reduce__(self) -> tuple[_Rebuild, tuple[dict[str, Any], list[float]]]: ...
 
 _Rebuild: TypeAlias = Callable[[dict[str, Any], list[float]], Controller]
+
+@final
+class ControllerSpec:
+    """A controller's configuration, parsed and typed; :meth:`build` makes the
+    controller.
+
+    Returned by :func:`famcc.design` (``Design.spec``): the design's
+    configuration, built into a :class:`Controller` without keyword
+    arguments or text. Frozen and picklable. Its values are checked when a
+    controller is built (by famcc-core, as in the :class:`Controller`
+    constructor).
+
+    Examples
+    --------
+    >>> import famcc
+    >>> d = famcc.design(2, 1e-3, u_limits=(-12, 12), eps=0.01, settle_time=2.0,
+    ...                  hold_input=4.0, gain=25.0)
+    >>> spec = d.spec
+    >>> spec.order, spec.dt
+    (2, 0.001)
+    >>> spec.build().config() == d.controller().config()
+    True
+    >>> spec.replace(k_u=10.0).config()["k_u"]
+    10.0
+    """
+
+    @property
+    def order(self) -> int:
+        """System order n."""
+    @property
+    def dt(self) -> float:
+        """Sample period, s."""
+    @property
+    def dtype(self) -> _DType:
+        """ "float64" or "float32"."""
+    def build(self) -> Controller:
+        """A fresh controller of this configuration.
+
+        Returns
+        -------
+        Controller
+            Equal to ``Controller(**spec.config())``.
+
+        Raises
+        ------
+        famcc.ConfigError
+            A value famcc-core rejects (the message names it).
+
+        Warns
+        -----
+        famcc.DesignWarning
+            For a legal but risky configuration, as the constructor.
+        """
+    def replace(
+        self,
+        *,
+        dt: float = ...,
+        feedback: _Law | Sequence[_Law] | None = ...,
+        skew: _Skew | Sequence[_Skew | None] | None = ...,
+        eps: float | tuple[float, float] = ...,
+        settle_time: float = ...,
+        k0: float = ...,
+        k_u: float = ...,
+        gamma: _Gamma = ...,
+        rho_e: float | Literal["auto"] | None = ...,
+        differentiator: HighGain | Literal["auto"] | None = ...,
+        latch: _Latch = ...,
+        transition: _Transition = ...,
+        initial_derivatives: Sequence[float] | None = ...,
+        dtype: _DType = ...,
+        output_limits: tuple[float, float] | None = ...,
+        rate_limit: float | None = ...,
+        initial_output: float | None = ...,
+    ) -> ControllerSpec:
+        """This configuration with the named fields changed.
+
+        Parameters
+        ----------
+        **overrides
+            Keyword arguments of :class:`Controller` (the types and names of
+            :meth:`Controller.replace`; not ``order``, ``constraint`` or
+            ``integral``). Checked when the spec is built.
+
+        Returns
+        -------
+        ControllerSpec
+            The changed configuration.
+
+        Raises
+        ------
+        famcc.ConfigError
+            A value of the wrong shape (a list of the wrong length, a name
+            that is not a choice).
+        TypeError
+            An unknown keyword, one of ``order``, ``constraint``,
+            ``integral``, or a value of the wrong type.
+        """
+    def config(self) -> dict[str, Any]:
+        """The configuration as keyword arguments of :class:`Controller`.
+
+        Returns
+        -------
+        dict
+            ``Controller(**spec.config())`` builds the controller of
+            :meth:`build`; ``rho_e`` is ``'auto'`` when the spec leaves it to
+            famcc-core.
+        """
+    def __reduce__(
+        self,
+    ) -> tuple[Callable[[dict[str, Any]], ControllerSpec], tuple[dict[str, Any]]]: ...
 
 @final
 class ControllerBank:
@@ -1350,6 +1639,153 @@ class PaperPlant:
             ``(G_a, F_a)`` with ``y^(n) = G_a u + F_a``.
         """
 
+# -- the simulator (famcc-sim): the private engine of famcc.sim -------------------
+
+@final
+class PaperLanes:
+    """The paper's second- or third-order plant for many lanes at once, each
+    with its own input-gain factor and disturbance amplitude; lane ``l``
+    computes exactly what ``PaperPlant(order, variant, gain[l], amp[l])``
+    computes.
+
+    Parameters
+    ----------
+    order : int
+        2 or 3.
+    variant : {'paper', 'code'}
+    gain, amp : numpy.ndarray
+        One finite value per lane (``gain > 0``).
+    """
+    def __new__(cls, order: int, variant: str, gain: _F64Array, amp: _F64Array) -> PaperLanes: ...
+    def __len__(self) -> int: ...
+    def table(
+        self, t: _F64Array, x: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], _F64Array, _F64Array]:
+        """Lane 0's exact output derivatives, gain and drift at every sample.
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            Times, shape ``(K,)``.
+        x : numpy.ndarray
+            States, shape ``(K, order)``.
+
+        Returns
+        -------
+        (numpy.ndarray, numpy.ndarray, numpy.ndarray)
+            ``(y, ..., y^(n-1))`` per sample ``(K, order)``, and ``G_a``, ``F_a``
+            of ``y^(n) = G_a u + F_a`` ``(K,)``: what ``PaperPlant``'s
+            ``output_derivatives`` and ``gain_and_drift`` give sample by sample.
+        """
+    def rhs(self, t: float, x: _ArrayIn, u: _ArrayIn) -> NDArray[np.float64]:
+        """``dx/dt`` of every lane.
+
+        Parameters
+        ----------
+        t : float
+            Time, s.
+        x : numpy.ndarray
+            The states, shape ``(order, lanes)``.
+        u : numpy.ndarray
+            The inputs, shape ``(lanes,)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``(order, lanes)``.
+        """
+
+@final
+class Lockstep:
+    """A closed loop run sample by sample (famcc-sim's ``Lockstep``): ``lanes``
+    copies of a plant, ``channels`` controllers per copy; the private engine
+    of :func:`famcc.simulate`, :func:`famcc.joints.simulate_joints` and
+    :func:`famcc.campaign`.
+
+    Parameters
+    ----------
+    plant : PaperLanes or (kind, callable)
+        The paper's plant as lanes, or a Python right-hand side with kind
+        ``'list'`` or ``'array'`` (one lane) or ``'lanes'`` (all at once).
+    controllers : list
+        One ``Controller`` (or duck-typed object with ``step(e, applied=)``)
+        per channel for one lane; or ``ControllerBank`` objects whose lengths
+        add up to ``lanes`` (one channel), lanes in order.
+    dt : float
+    samples, substeps, states : int
+    x0 : sequence of float
+        ``states * lanes`` values, state-major.
+    outputs : list of int
+        Per channel, the index of its output state.
+    limits : list of (float, float) or None
+        Per channel.
+    diverge_at, state_bound : float, optional
+    detail : {'full', 'campaign', 'none'}
+    keep_states : bool
+    """
+    def __new__(
+        cls,
+        plant: PaperLanes | tuple[str, Callable[..., Any]],
+        controllers: Sequence[Any],
+        *,
+        dt: float,
+        samples: int,
+        substeps: int,
+        states: int,
+        x0: Sequence[float],
+        outputs: Sequence[int],
+        limits: Sequence[tuple[float, float] | None],
+        diverge_at: float | None = None,
+        state_bound: float | None = None,
+        detail: str = "full",
+        keep_states: bool = True,
+    ) -> Lockstep: ...
+    @property
+    def diag_columns(self) -> tuple[str, ...]:
+        """The diagnostics columns per channel and lane of ``run``'s ``'diag'``."""
+    @property
+    def sample(self) -> int:
+        """The next sample's index."""
+    @property
+    def done(self) -> bool:
+        """True when the run is over (every lane stopped, or the last sample done)."""
+    @property
+    def held(self) -> int:
+        """Failed steps held so far (banks)."""
+    @property
+    def state(self) -> _F64Array:
+        """The plant's states now, state-major."""
+    @property
+    def stops(self) -> list[tuple[int, str] | None]:
+        """Per lane, ``(samples_kept, reason)`` of a lane that stopped, else None."""
+    def counts(self) -> list[tuple[int, int | None] | None]:
+        """Per channel and lane, the last diagnostics' ``(clamp_count,
+        unsaturated_expansions)`` (None when the controller reports none).
+        """
+    def run(
+        self,
+        yd: _F64Array,
+        noise: _F64Array | None = None,
+        disturbance: _F64Array | None = None,
+    ) -> dict[str, Any]:
+        """Runs the next ``len(yd) / (channels * lanes)`` samples.
+
+        Parameters
+        ----------
+        yd, noise, disturbance : numpy.ndarray
+            Contiguous float64, ``[row][channel][lane]``; noise and disturbance
+            may be None.
+
+        Returns
+        -------
+        dict
+            ``rows`` and float64 vectors ``e``, ``e_measured``, ``v``, ``u``,
+            ``d`` (``rows * channels * lanes``), ``x`` (``rows * states *
+            lanes``, when kept), ``diag`` (``rows * channels * lanes * width``)
+            and ``width``; ``plant_error`` (the exception) when the plant's
+            right-hand side raised: the block ends there.
+        """
+
 def paper_design(example: int, variant: str) -> dict[str, Any]: ...
 def paper_corollary_bound(example: int) -> float: ...
 def paper_input_limits(example: int, saturated: bool) -> tuple[float, float]: ...
@@ -1357,6 +1793,7 @@ def paper_input_limits(example: int, saturated: bool) -> tuple[float, float]: ..
 # -- functions -------------------------------------------------------------------
 
 def _controller_from_state(kwargs: dict[str, Any], state: Sequence[float]) -> Controller: ...
+def _controller_spec_from_kwargs(kwargs: dict[str, Any]) -> ControllerSpec: ...
 @overload
 def transition_t(z: _Scalar) -> float: ...
 @overload

@@ -10,8 +10,8 @@
 //!   input limits and the corollaries' settling bounds;
 //! - [`plants`]: the second- and third-order plants in strict-feedback form
 //!   (eq. (5), SFS), generic over `f32`/`f64`, with their exact output
-//!   derivatives and their gain and drift (eq. (7), FAS) from jets, and an
-//!   RK4 step.
+//!   derivatives and their gain and drift (eq. (7), FAS) from jets;
+//! - [`rk4`]: the one RK4 step of the project (any state length).
 //!
 //! `no_std`, no heap, no panics, like famcc-core.
 //!
@@ -46,5 +46,6 @@
 
 pub mod designs;
 pub mod plants;
+pub mod rk4;
 
 pub use designs::{Example, Variant};

@@ -336,38 +336,7 @@ pub fn gain_and_drift<T: Real, const N: usize, P: Plant<T, N>>(plant: &P, t: T, 
     (gain, drift)
 }
 
-/// The three instants of an RK4 step over `[t, t + h]`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Instant {
-    /// `t`.
-    Start,
-    /// `t + h/2`.
-    Middle,
-    /// `t + h`.
-    End,
-}
-
-/// Classical RK4 over one step of length `h` for any right-hand side
-/// `f(instant, x)`.
-pub fn rk4_with<T: Real, const N: usize>(f: impl Fn(Instant, &[T; N]) -> [T; N], x: &[T; N], h: T) -> [T; N] {
-    let half = T::from_f64(0.5) * h;
-    let axpy = |a: T, k: &[T; N]| {
-        let mut out = *x;
-        out.iter_mut().zip(k.iter()).for_each(|(o, ki)| *o = *o + a * *ki);
-        out
-    };
-    let k1 = f(Instant::Start, x);
-    let k2 = f(Instant::Middle, &axpy(half, &k1));
-    let k3 = f(Instant::Middle, &axpy(half, &k2));
-    let k4 = f(Instant::End, &axpy(h, &k3));
-    let two = T::from_f64(2.0);
-    let sixth = h / T::from_f64(6.0);
-    let mut out = *x;
-    for (o, (((a, b), c), d)) in out.iter_mut().zip(k1.iter().zip(&k2).zip(&k3).zip(&k4)) {
-        *o = *o + sixth * (*a + two * *b + two * *c + *d);
-    }
-    out
-}
+pub use crate::rk4::{rk4_with, Instant};
 
 /// Classical RK4 over `[t, t + h]` with the input `u` held; `c` holds the
 /// time functions at `t`, `t + h/2` and `t + h`.

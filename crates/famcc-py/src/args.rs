@@ -4,7 +4,7 @@
 //! The values themselves are checked by famcc-core when the spec is built.
 
 use crate::differentiator::HighGain;
-use crate::errors::ConfigError;
+use crate::errors::{config_err_got, ConfigFault};
 use crate::laws::Law;
 use crate::names::{ConstraintName, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::skews::SkewSpec;
@@ -57,20 +57,22 @@ pub struct Args<'a, 'py> {
     pub initial_output: Option<f64>,
 }
 
-/// One value for every stage, or a list or tuple of exactly `n`.
+/// One value for every stage, or a list or tuple of exactly `n`; `parameter`
+/// and `rule` name the list in the error for a wrong length.
 pub fn per_stage<'py, T>(
     obj: &Bound<'py, PyAny>,
     n: usize,
-    what: &str,
+    (parameter, rule): (&str, &str),
     one: impl Fn(&Bound<'py, PyAny>) -> PyResult<T>,
 ) -> PyResult<Vec<T>> {
     if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
         let items: Vec<Bound<'py, PyAny>> = obj.try_iter()?.collect::<PyResult<_>>()?;
         if items.len() != n {
-            return Err(ConfigError::new_err(format!(
-                "{what} = {n} entries (one per stage), got {}",
+            let message = format!(
+                "{parameter} {rule} = {n} entries (one per stage), got {}",
                 items.len()
-            )));
+            );
+            return Err(ConfigFault::new(parameter, rule).message(message).into());
         }
         items.iter().map(&one).collect()
     } else {
@@ -78,110 +80,134 @@ pub fn per_stage<'py, T>(
     }
 }
 
-fn not_a(what: &str, got: String) -> PyErr {
-    ConfigError::new_err(format!("{what} (got {got})"))
+/// `parameter` must be one of the listed kinds (the message shows `got`).
+fn not_a(parameter: &str, rule: &str, got: String) -> PyErr {
+    ConfigFault::new(parameter, rule).got(got).into()
+}
+
+/// The number of stages of the law: `order - 1`, or `order` with integral
+/// action.
+pub fn stage_count(order: usize, integral: bool) -> usize {
+    order - 1 + usize::from(integral)
+}
+
+/// The `feedback` argument: one law per stage.
+pub fn parse_laws(feedback: Option<&Bound<'_, PyAny>>, order: usize, integral: bool) -> PyResult<Vec<Law>> {
+    let n = stage_count(order, integral);
+    let rule = if integral {
+        "must have order (integral=True: one law per stage of the order + 1 law)"
+    } else {
+        "must have order - 1"
+    };
+    match feedback {
+        Some(f) if n == 0 => {
+            if !f.len().map(|l| l == 0).unwrap_or(false) {
+                return Err(ConfigFault::new(
+                    "feedback",
+                    "must be omitted (or empty) at order 1: there are no stages",
+                )
+                .into());
+            }
+            Ok(vec![])
+        }
+        Some(f) => per_stage(f, n, ("feedback", rule), |o| Law::extract_named(o, "feedback")),
+        None if n == 0 => Ok(vec![]),
+        None => Err(ConfigFault::new("feedback", "is required for order >= 2 (one law per stage)").into()),
+    }
+}
+
+/// The `skew` argument: one skew (or None) per stage.
+pub fn parse_skews(
+    skew: Option<&Bound<'_, PyAny>>,
+    order: usize,
+    integral: bool,
+) -> PyResult<Vec<Option<SkewSpec>>> {
+    let n = stage_count(order, integral);
+    match skew {
+        Some(s) if n > 0 => per_stage(
+            s,
+            n,
+            (
+                "skew",
+                if integral {
+                    "must have order"
+                } else {
+                    "must have order - 1"
+                },
+            ),
+            SkewSpec::extract,
+        ),
+        _ => Ok(vec![None; n]),
+    }
+}
+
+/// The `differentiator` argument at `order`.
+pub fn parse_differentiator(arg: Option<DiffArg<'_>>, order: usize) -> PyResult<Option<HighGain>> {
+    const RULE: &str = "must be a HighGain, 'auto' or None";
+    match arg {
+        None => Ok(None),
+        Some(DiffArg::Name(s)) if s == AUTO => differentiator::needed_at(order)
+            .then(|| HighGain::auto(order))
+            .transpose(),
+        Some(DiffArg::Name(s)) => Err(not_a("differentiator", RULE, format!("{s:?}"))),
+        Some(DiffArg::Other(o)) => Err(not_a("differentiator", RULE, o.repr()?.to_string())),
+        Some(DiffArg::Gain(h)) => {
+            let h = h.get().clone();
+            if h.a.len() != order {
+                let rule = format!("must have {order} coefficients (the order)");
+                let message = format!("differentiator.a {rule}, got {}", h.a.len());
+                return Err(ConfigFault::new("differentiator.a", rule).message(message).into());
+            }
+            Ok(Some(h))
+        }
+    }
+}
+
+/// The `initial_derivatives` argument: `z2..zn`, `order - 1` of them.
+pub fn check_initial_derivatives(d: Option<&[f64]>, order: usize) -> PyResult<()> {
+    match d {
+        Some(d) if d.len() != order - 1 => {
+            let rule = format!("must have order - 1 = {} entries (z2..zn)", order - 1);
+            let message = format!("initial_derivatives {rule}, got {}", d.len());
+            Err(ConfigFault::new("initial_derivatives", rule)
+                .message(message)
+                .into())
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The `rho_e` argument.
+pub fn parse_rho_e(arg: Option<RhoArg<'_>>) -> PyResult<RhoE> {
+    const RULE: &str = "must be a float, 'auto' or None";
+    match arg {
+        None => Ok(RhoE::Given(None)),
+        Some(RhoArg::Value(v)) => Ok(RhoE::Given(Some(v))),
+        Some(RhoArg::Name(s)) if s == AUTO => Ok(RhoE::Default),
+        Some(RhoArg::Name(s)) => Err(not_a("rho_e", RULE, format!("{s:?}"))),
+        Some(RhoArg::Other(o)) => Err(not_a("rho_e", RULE, o.repr()?.to_string())),
+    }
 }
 
 impl Args<'_, '_> {
     /// The typed specification.
     pub fn parse(self) -> PyResult<Spec> {
         let order = usize::try_from(self.order).unwrap_or(0);
-        check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {})", self.order)))?;
+        check_order(order).map_err(|e| config_err_got(e, self.order))?;
         if self.integral && order >= MAX_ORDER {
-            return Err(ConfigError::new_err(format!(
-                "integral=True needs order <= {} (the law has order + 1 <= MAX_ORDER = {MAX_ORDER}), got {order}",
+            let rule = format!(
+                "needs order <= {} (the law has order + 1 <= MAX_ORDER = {MAX_ORDER})",
                 MAX_ORDER - 1
-            )));
+            );
+            let message = format!("integral=True {rule}, got {order}");
+            return Err(ConfigFault::new("integral", rule).message(message).into());
         }
-        // Stages of the law: order - 1, or order with integral action.
-        let n = order - 1 + usize::from(self.integral);
-        let stages_rule = if self.integral {
-            "feedback must have order (integral=True: one law per stage of the order + 1 law)"
-        } else {
-            "feedback must have order - 1"
-        };
-        let laws: Vec<Law> = match self.feedback {
-            Some(f) if n == 0 => {
-                if !f.len().map(|l| l == 0).unwrap_or(false) {
-                    return Err(ConfigError::new_err(
-                        "feedback must be omitted (or empty) at order 1: there are no stages",
-                    ));
-                }
-                vec![]
-            }
-            Some(f) => per_stage(f, n, stages_rule, |o| Law::extract_named(o, "feedback"))?,
-            None if n == 0 => vec![],
-            None => {
-                return Err(ConfigError::new_err(
-                    "feedback is required for order >= 2 (one law per stage)",
-                ))
-            }
-        };
-        let skews: Vec<Option<SkewSpec>> = match self.skew {
-            Some(s) if n > 0 => per_stage(
-                s,
-                n,
-                if self.integral {
-                    "skew must have order"
-                } else {
-                    "skew must have order - 1"
-                },
-                SkewSpec::extract,
-            )?,
-            _ => vec![None; n],
-        };
+        let laws = parse_laws(self.feedback, order, self.integral)?;
+        let skews = parse_skews(self.skew, order, self.integral)?;
         let constraint = parse_constraint(CONSTRAINT.parse(self.constraint, "constraint")?, self.eps)?;
-        let differentiator = match self.differentiator {
-            None => None,
-            Some(DiffArg::Name(s)) if s == AUTO => differentiator::needed_at(order)
-                .then(|| HighGain::auto(order))
-                .transpose()?,
-            Some(DiffArg::Name(s)) => {
-                return Err(not_a(
-                    "differentiator must be a HighGain, 'auto' or None",
-                    format!("{s:?}"),
-                ))
-            }
-            Some(DiffArg::Other(o)) => {
-                return Err(not_a(
-                    "differentiator must be a HighGain, 'auto' or None",
-                    o.repr()?.to_string(),
-                ))
-            }
-            Some(DiffArg::Gain(h)) => {
-                let h = h.get().clone();
-                if h.a.len() != order {
-                    return Err(ConfigError::new_err(format!(
-                        "differentiator.a must have {order} coefficients (the order), got {}",
-                        h.a.len()
-                    )));
-                }
-                Some(h)
-            }
-        };
-        if let Some(d) = &self.initial_derivatives {
-            if d.len() != order - 1 {
-                return Err(ConfigError::new_err(format!(
-                    "initial_derivatives must have order - 1 = {} entries (z2..zn), got {}",
-                    order - 1,
-                    d.len()
-                )));
-            }
-        }
-        let rho_e = match self.rho_e {
-            None => RhoE::Given(None),
-            Some(RhoArg::Value(v)) => RhoE::Given(Some(v)),
-            Some(RhoArg::Name(s)) if s == AUTO => RhoE::Default,
-            Some(RhoArg::Name(s)) => {
-                return Err(not_a("rho_e must be a float, 'auto' or None", format!("{s:?}")))
-            }
-            Some(RhoArg::Other(o)) => {
-                return Err(not_a(
-                    "rho_e must be a float, 'auto' or None",
-                    o.repr()?.to_string(),
-                ))
-            }
-        };
+        let differentiator = parse_differentiator(self.differentiator, order)?;
+        check_initial_derivatives(self.initial_derivatives.as_deref(), order)?;
+        let rho_e = parse_rho_e(self.rho_e)?;
         Ok(Spec {
             order,
             dt: self.dt,
@@ -207,16 +233,19 @@ impl Args<'_, '_> {
 
 /// The constraint of a type with the `eps` argument: a float, or the pair
 /// `(eps_x, eps_y)` for the oblique type.
-fn parse_constraint(kind: ConstraintName, eps: &Bound<'_, PyAny>) -> PyResult<Constraint<f64>> {
+pub fn parse_constraint(kind: ConstraintName, eps: &Bound<'_, PyAny>) -> PyResult<Constraint<f64>> {
     if kind == ConstraintName::Oblique {
         let (eps_x, eps_y): (f64, f64) = eps.extract().map_err(|_| {
-            ConfigError::new_err("eps must be a pair (eps_x, eps_y) for the oblique constraint")
+            PyErr::from(ConfigFault::new(
+                "eps",
+                "must be a pair (eps_x, eps_y) for the oblique constraint",
+            ))
         })?;
         return Ok(Constraint::Oblique { eps_x, eps_y });
     }
     let eps: f64 = eps
         .extract()
-        .map_err(|_| ConfigError::new_err("eps must be a float"))?;
+        .map_err(|_| PyErr::from(ConfigFault::new("eps", "must be a float")))?;
     Ok(match kind {
         ConstraintName::Lateral => Constraint::Lateral { eps },
         _ => Constraint::Longitudinal { eps },

@@ -50,7 +50,7 @@ const PARALLEL_MIN: usize = 16384;
 /// True
 #[pyclass(module = "famcc._core")]
 pub struct ControllerBank {
-    cores: BankCores,
+    pub(crate) cores: BankCores,
     spec: Spec,
     n: usize,
     /// Overflowed steps in the last call of `step`.
@@ -125,6 +125,11 @@ fn threads_for(n: usize) -> usize {
 }
 
 impl ControllerBank {
+    /// The number of controllers.
+    pub(crate) fn len(&self) -> usize {
+        self.n
+    }
+
     /// `step` on an error slice.
     fn step_errors<'py>(
         &mut self,

@@ -3,13 +3,13 @@
 //! defaults are famcc-core's (the signature's defaults name them).
 
 use crate::args::{Args, DiffArg, RhoArg, AUTO};
+use crate::controller_spec::module_function;
 use crate::diagnostics::Diagnostics;
 use crate::dispatch::Core;
-use crate::errors::{config_err, step_err, ConfigError, StepError};
-use crate::health::design_warning;
+use crate::errors::{kind, step_err, ConfigFault, StepFault};
 use crate::names::{CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::number::{Int, Num, Text};
-use crate::spec::{RhoE, Spec};
+use crate::spec::Spec;
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
@@ -25,24 +25,6 @@ pub struct PyController {
     pub spec: Spec,
     /// The health warning was given (once per controller).
     pub(crate) health_warned: bool,
-}
-
-impl PyController {
-    /// Builds the controller of `spec`, whose `rho_e` then shows the margin
-    /// in effect.
-    pub fn from_spec(mut spec: Spec) -> PyResult<Self> {
-        let core = Core::build(&spec).map_err(config_err)?;
-        spec.rho_e = RhoE::Given(core.rho_e());
-        Ok(Self {
-            core,
-            spec,
-            health_warned: false,
-        })
-    }
-
-    pub fn set_state_vec(&mut self, v: &[f64]) -> PyResult<()> {
-        self.core.set_state(v)
-    }
 }
 
 #[pymethods]
@@ -110,12 +92,7 @@ impl PyController {
             initial_output: initial_output.map(|u| u.0),
         }
         .parse()?;
-        let c = Self::from_spec(spec)?;
-        // Legal but risky choices (famcc-core's Config::lint), once each.
-        for finding in c.core.lint() {
-            design_warning(py, &finding)?;
-        }
-        Ok(c)
+        Self::from_spec_warned(py, spec)
     }
 
     /// Sample period, s.
@@ -174,7 +151,7 @@ impl PyController {
     #[pyo3(signature = (e, applied = None))]
     #[inline]
     fn step(&mut self, e: f64, applied: Option<f64>) -> PyResult<f64> {
-        let v = self.core.step(e, applied).map_err(step_err)?;
+        let v = self.core.step(e, applied).map_err(|x| step_err(x, "e"))?;
         self.check_health(applied)?;
         Ok(v)
     }
@@ -205,7 +182,10 @@ impl PyController {
     ///     A non-finite input (the state is unchanged), or an overflow.
     #[pyo3(signature = (y, y_d, applied = None))]
     fn step_output(&mut self, y: f64, y_d: f64, applied: Option<f64>) -> PyResult<f64> {
-        let v = self.core.step_output(y, y_d, applied).map_err(step_err)?;
+        let v = self
+            .core
+            .step_output(y, y_d, applied)
+            .map_err(|x| step_err(x, if y.is_finite() { "y_d" } else { "y" }))?;
         self.check_health(applied)?;
         Ok(v)
     }
@@ -235,7 +215,7 @@ impl PyController {
     ///     overflow.
     #[pyo3(signature = (e, dt, applied = None))]
     fn step_dt(&mut self, e: f64, dt: f64, applied: Option<f64>) -> PyResult<f64> {
-        let v = self.core.step_dt(e, dt, applied).map_err(step_err)?;
+        let v = self.core.step_dt(e, dt, applied).map_err(|x| step_err(x, "e"))?;
         self.check_health(applied)?;
         Ok(v)
     }
@@ -267,7 +247,7 @@ impl PyController {
     fn step_state(&mut self, z: &Bound<'_, PyAny>, applied: Option<f64>) -> PyResult<f64> {
         let z: Vec<f64> = z
             .extract()
-            .map_err(|_| StepError::new_err("z must be a sequence of floats"))?;
+            .map_err(|_| StepFault::new(kind::WRONG_TYPE, Some("z"), "z must be a sequence of floats"))?;
         let v = self.core.step_state(&z, applied, self.spec.integral)?;
         self.check_health(applied)?;
         Ok(v)
@@ -335,7 +315,7 @@ impl PyController {
     fn set_state(&mut self, state: PyReadonlyArray1<'_, f64>) -> PyResult<()> {
         let v = state
             .as_slice()
-            .map_err(|_| ConfigError::new_err("state must be a contiguous float vector"))?;
+            .map_err(|_| ConfigFault::new("state", "must be a contiguous float vector"))?;
         self.core.set_state(v)
     }
 
@@ -351,13 +331,15 @@ impl PyController {
         self.spec.kwargs(py)
     }
 
+    #[doc = include_str!("docs/replace.md")]
+    #[allow(clippy::doc_lazy_continuation)] // ">>>" doctest prompts are not quotes
+    #[pyo3(signature = (**overrides))]
+    fn replace(&self, py: Python<'_>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        Self::from_spec_warned(py, self.spec.replace(overrides)?)
+    }
+
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
-        let kw = self.spec.kwargs(py)?;
-        let mut parts = Vec::new();
-        for (k, v) in kw.iter() {
-            parts.push(format!("{}={}", k.str()?, v.repr()?));
-        }
-        Ok(format!("Controller({})", parts.join(", ")))
+        self.spec.repr(py, "Controller")
     }
 
     fn __copy__(&self) -> Self {
@@ -371,7 +353,7 @@ impl PyController {
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
         let py = slf.py();
         let this = slf.borrow();
-        let f = py.import("famcc._core")?.getattr("_controller_from_state")?;
+        let f = module_function(py, "_controller_from_state")?;
         let args = PyTuple::new(
             py,
             [

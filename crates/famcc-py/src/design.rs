@@ -1,7 +1,14 @@
-//! `famcc_core::design` for Python: the rules' numbers, translated to a dict.
+//! `famcc_core::design` for Python: the rules' numbers, translated to a
+//! dict, and the design's configuration as a `ControllerSpec`.
 
+use crate::controller_spec::ControllerSpec;
+use crate::differentiator::HighGain;
 use crate::errors::config_err;
-use famcc_core::design::{self, Level, Requirements, Rule};
+use crate::laws::{Law, Linear};
+use crate::names::DType;
+use crate::spec::{RhoE, Spec};
+use famcc_core::design::{self, Design, Level, Requirements, Rule};
+use famcc_core::{Constraint, Gamma};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -25,8 +32,44 @@ fn level_name(l: Level) -> &'static str {
     }
 }
 
-/// The design rules of famcc-core: the chosen numbers and the findings
-/// `(rule, level, value, limit, suggestion)`.
+/// The controller of a design: linear stage laws `Linear(lambda)`, the
+/// longitudinal constraint of width `eps_s`, the log map, the
+/// differentiator at order >= 2 (as `Design.controller_kwargs` states it).
+fn design_spec(d: &Design, req: &Requirements) -> Spec {
+    let order = req.order;
+    let law = Law::Linear(Linear { k: d.lambda });
+    let differentiator = (order > 1).then(|| HighGain {
+        mu: d.mu,
+        a: d.a.get(..order).unwrap_or(&[]).to_vec(),
+        discretization: d.discretization,
+        limits: d.estimate_limits.map(|l| l.get(..order).unwrap_or(&[]).to_vec()),
+        prefilter: d.prefilter,
+    });
+    Spec {
+        order,
+        dt: req.dt,
+        stages: vec![(law, None); d.law_order.saturating_sub(1)],
+        constraint: Constraint::Longitudinal { eps: d.eps_s },
+        settle_time: d.settle_time,
+        k0: d.k0,
+        k_u: d.k_u,
+        gamma: Gamma::Log,
+        rho_e: RhoE::Given(Some(d.rho_e)),
+        latch: Default::default(),
+        transition: Default::default(),
+        differentiator,
+        initial_derivatives: None,
+        dtype: DType::F64,
+        integral: d.integral,
+        output_limits: None,
+        rate_limit: None,
+        initial_output: None,
+    }
+}
+
+/// The design rules of famcc-core: the chosen numbers, the findings
+/// `(rule, level, value, limit, suggestion)` and, under `"controller"`,
+/// the configuration (a `ControllerSpec`).
 #[pyfunction]
 #[pyo3(signature = (order, dt, u_limits, eps, settle_time, hold_input, gain=None, noise_std=0.0, integral=None, phase_budget=None, mu_per_dt=None, settle_fraction=None, max_error=None))]
 #[allow(clippy::too_many_arguments)]
@@ -96,5 +139,9 @@ pub fn design_rules<'py>(
         })
         .collect();
     out.set_item("checks", checks)?;
+    let spec = ControllerSpec {
+        spec: design_spec(&d, &req),
+    };
+    out.set_item("controller", spec)?;
     Ok(out)
 }

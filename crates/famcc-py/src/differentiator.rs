@@ -1,7 +1,7 @@
 //! `famcc.HighGain`: the high-gain differentiator's parameters. The rules
 //! and the paper's choice of them are famcc-core's.
 
-use crate::errors::{config_err, ConfigError};
+use crate::errors::{config_err, config_err_got, ConfigFault};
 use crate::names::DISCRETIZATION;
 use crate::number::{Num, Text};
 use crate::orders::with_order;
@@ -176,20 +176,16 @@ impl HighGain {
         let a: Vec<f64> = a.into_iter().map(|x| x.0).collect();
         let limits: Option<Vec<f64>> = limits.map(|l| l.into_iter().map(|x| x.0).collect());
         check_order(a.len()).map_err(|e| {
-            ConfigError::new_err(format!(
-                "a must have one coefficient per order: {e} (got {})",
-                a.len()
-            ))
+            let message = format!("a must have one coefficient per order: {e} (got {})", a.len());
+            PyErr::from(ConfigFault::new("a", "must have one coefficient per order").message(message))
         })?;
         if let Some(l) = &limits {
             if l.len() != a.len() {
-                return Err(ConfigError::new_err(format!(
-                    "limits must have one entry per order ({}), got {}",
-                    a.len(),
-                    l.len()
-                )));
+                let rule = format!("must have one entry per order ({})", a.len());
+                let message = format!("limits {rule}, got {}", l.len());
+                return Err(ConfigFault::new("limits", rule).message(message).into());
             }
-            check_estimate_limits(l).map_err(|e| ConfigError::new_err(format!("limits {}", e.rule)))?;
+            check_estimate_limits(l).map_err(|e| PyErr::from(ConfigFault::new("limits", e.rule)))?;
         }
         let h = Self {
             mu,
@@ -230,7 +226,7 @@ impl HighGain {
     #[pyo3(signature = (order, mu = PAPER_MU, discretization = DISCRETIZATION.default_name()),
         text_signature = "(order, mu=0.01, discretization='exact')")]
     fn default(order: usize, mu: f64, discretization: &str) -> PyResult<Self> {
-        check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
+        check_order(order).map_err(|e| config_err_got(e, order))?;
         let mut a = vec![0.0; order];
         paper_coefficients(&mut a);
         Self::new(
@@ -280,11 +276,9 @@ impl HighGain {
     #[pyo3(text_signature = "(order, dt)")]
     fn for_rate(order: usize, dt: Num) -> PyResult<Self> {
         let dt = dt.0;
-        check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
+        check_order(order).map_err(|e| config_err_got(e, order))?;
         if !(dt.is_finite() && dt > 0.0) {
-            return Err(ConfigError::new_err(format!(
-                "dt must be finite and > 0 (got {dt})"
-            )));
+            return Err(ConfigFault::new("dt", "must be finite and > 0").got(dt).into());
         }
         let h = famcc_core::HighGain::<f64, { famcc_core::config::MAX_ORDER }>::auto_at(order, dt);
         let a = h.a.get(..order).map(<[f64]>::to_vec).unwrap_or_default();
@@ -332,12 +326,10 @@ impl HighGain {
     #[staticmethod]
     #[pyo3(text_signature = "(order, dt, mu)")]
     fn discretization_for(order: usize, dt: Num, mu: Num) -> PyResult<&'static str> {
-        check_order(order).map_err(|e| ConfigError::new_err(format!("{e} (got {order})")))?;
+        check_order(order).map_err(|e| config_err_got(e, order))?;
         for (name, v) in [("dt", dt.0), ("mu", mu.0)] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(ConfigError::new_err(format!(
-                    "{name} must be finite and > 0 (got {v})"
-                )));
+                return Err(ConfigFault::new(name, "must be finite and > 0").got(v).into());
             }
         }
         Ok(
@@ -410,5 +402,5 @@ impl HighGain {
 
 /// The length was checked by `check_order`; this is never reached.
 fn unreachable_length() -> PyResult<()> {
-    Err(ConfigError::new_err("a must have one coefficient per order"))
+    Err(ConfigFault::new("a", "must have one coefficient per order").into())
 }

@@ -4,13 +4,13 @@
 
 use crate::diagnostics::Diagnostics;
 use crate::differentiator::to_array;
-use crate::errors::{config_err, step_err, StepError as PyStepError};
+use crate::errors::{config_err, kind, step_err, StepFault};
 use crate::names::DType;
 use crate::spec::Spec;
 use crate::state;
 use famcc_core::config::check_order;
 use famcc_core::{ConfigError, Controller, Real, StepError};
-use pyo3::PyResult;
+use pyo3::{PyErr, PyResult};
 
 macro_rules! cores {
     ($($v64:ident, $v32:ident, $n:literal;)*) => {
@@ -133,9 +133,10 @@ impl Core {
         with_core!(self, c => {
             let full: Vec<f64> = core::iter::repeat_n(0.0, off).chain(z.iter().copied()).collect();
             let z = to_array(&full).ok_or_else(|| {
-                PyStepError::new_err(format!("z must have {} entries (one per order), got {}", c.estimate().len() - off, z.len()))
+                let message = format!("z must have {} entries (one per order), got {}", c.estimate().len() - off, z.len());
+                PyErr::from(StepFault::new(kind::WRONG_LENGTH, Some("z"), message))
             })?;
-            c.step_state_applied(z, applied.map(Real::from_f64)).map(|v| v.to_f64_lossless()).map_err(step_err)
+            c.step_state_applied(z, applied.map(Real::from_f64)).map(|v| v.to_f64_lossless()).map_err(|e| step_err(e, "z"))
         })
     }
 
@@ -161,5 +162,12 @@ impl Core {
 
     pub fn set_state(&mut self, v: &[f64]) -> PyResult<()> {
         with_core!(self, c => state::restore(c, v).map_err(config_err))
+    }
+}
+
+impl Core {
+    /// The last step's diagnostics as famcc-sim records them.
+    pub fn sim_diag(&self) -> famcc_sim::Diag {
+        with_core!(self, c => famcc_sim::Diag::of(c))
     }
 }

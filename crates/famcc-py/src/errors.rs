@@ -1,31 +1,403 @@
-//! Python exception types: `ValueError` subclasses whose message names the
-//! parameter (configuration) or the reason (step).
+//! famcc's Python exception and warning classes, defined here (the binding
+//! imports no Python module of famcc): `ConfigError` and `StepError`
+//! (`ValueError`s with structured fields besides the message),
+//! `FamccWarning` / `DesignWarning` (`UserWarning`s) and the
+//! `ArgumentTypeError` of a wrongly typed argument. `famcc._common`
+//! re-exports the warnings.
+//!
+//! The fields live in the instance's `__dict__` (class defaults None), so
+//! `BaseException.__reduce__` pickles them with the message; Python code
+//! passes them as keyword arguments (`ConfigError("eps must be > 0",
+//! parameter="eps", rule="must be > 0")`). `str(error)` is the message alone.
 
+use crate::bind::set_method;
 use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
-use pyo3::PyErr;
+use pyo3::exceptions::{PyBaseException, PyTypeError, PyUserWarning, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyInt, PyString, PyTuple, PyType};
+use pyo3::{PyErr, PyErrArguments};
+use std::fmt::Display;
 
 create_exception!(
-    _core,
+    famcc._core,
     ConfigError,
     PyValueError,
-    "An invalid configuration value; the message names the parameter and the rule."
+    "An invalid configuration value; the message names the parameter and the rule.\n\n\
+     A ``ValueError``: ``str(error)`` is the message; the fields say the same for a program.\n\n\
+     Parameters\n----------\n\
+     *args\n    The message, as for any exception.\n\
+     parameter : str, optional\n    The parameter's name.\n\
+     stage : int, optional\n    The stage of a per-stage parameter, from 1.\n\
+     rule : str, optional\n    The rule the value broke.\n\n\
+     Attributes\n----------\n\
+     parameter : str or None\n    The parameter's name as in the API (``'eps'``, ``'k_u'``, ``'feedback'``,\n    \
+     ``'differentiator.a'``); None when no single parameter is at fault.\n\
+     stage : int or None\n    For a per-stage parameter (``feedback``, ``skew``, a stage's own values), the\n    \
+     stage, counted from 1 as in the message ``'stage 1: ...'``; None otherwise.\n\
+     rule : str or None\n    The rule the value broke, e.g. ``'must be finite and > 0'``; None when the\n    \
+     message has no separate rule.\n\n\
+     Examples\n--------\n\
+     >>> import famcc\n\
+     >>> try:\n\
+     ...     famcc.Linear(0.0)\n\
+     ... except famcc.ConfigError as error:\n\
+     ...     print(error, '|', error.parameter, '|', error.rule)\n\
+     k must be finite and > 0 | k | must be finite and > 0"
 );
 create_exception!(
-    _core,
+    famcc._core,
     StepError,
     PyValueError,
-    "A step that could not be taken (non-finite input, bad ``dt``, overflow).\n\nFor a non-finite \
-     ``e``, ``applied`` or ``dt`` the state is unchanged; an overflow on a valid sample after the first \
-     step consumes the sample (hold the previous output)."
+    "A step that could not be taken (non-finite input, bad ``dt``, overflow).\n\n\
+     For a non-finite ``e``, ``applied`` or ``dt`` the state is unchanged; an overflow on a valid \
+     sample after the first step consumes the sample (hold the previous output).\n\n\
+     Parameters\n----------\n\
+     *args\n    The message, as for any exception.\n\
+     kind : str, optional\n    What went wrong (see ``kind`` below).\n\
+     parameter : str, optional\n    The input at fault.\n\n\
+     Attributes\n----------\n\
+     kind : str or None\n    One stable name per cause: ``'non-finite-input'``, ``'non-finite-applied'``,\n    \
+     ``'invalid-dt'``, ``'no-differentiator'``, ``'overflow'`` (famcc-core's ``StepError``),\n    \
+     ``'wrong-length'`` (a vector of the wrong length) and ``'wrong-type'`` (an input that is\n    \
+     not a float vector).\n\
+     parameter : str or None\n    The input at fault (``'e'``, ``'y'``, ``'y_d'``, ``'z'``, ``'applied'``, ``'dt'``,\n    \
+     ``'differentiator'``); None when no single input is (an overflow).\n\n\
+     Examples\n--------\n\
+     >>> import famcc\n\
+     >>> ctrl = famcc.Controller(1, 1e-3, constraint='longitudinal', eps=0.1, k_u=1.0)\n\
+     >>> try:\n\
+     ...     ctrl.step(float('nan'))\n\
+     ... except famcc.StepError as error:\n\
+     ...     print(error.kind, error.parameter)\n\
+     non-finite-input e"
 );
+create_exception!(
+    famcc._core,
+    FamccWarning,
+    PyUserWarning,
+    "Base class of the warnings famcc itself emits.\n\n\
+     The test suite turns every one of them into an error, so that a warning that famcc's own \
+     code triggers is either fixed or expected explicitly."
+);
+create_exception!(
+    famcc._core,
+    DesignWarning,
+    FamccWarning,
+    "A legal but risky choice (or a requirement a design cannot meet).\n\n\
+     Emitted by :func:`famcc.design` for every finding that is not ok, and by \
+     :class:`famcc.Controller` for risky configurations; the message names the parameter, the \
+     rule and a suggested value."
+);
+create_exception!(
+    famcc._core,
+    ArgumentTypeError,
+    PyTypeError,
+    "A ``TypeError`` whose message names the argument.\n\n\
+     The compiled constructors raise it for an argument of the wrong type (a ``bool`` where a \
+     number is meant, a ``str`` for a float, ...): ``str(error)`` reads ``argument 'dt': must be \
+     a real number, not bool``."
+);
+
+/// The stable names of a step error's cause (`StepError.kind`).
+pub mod kind {
+    pub const NON_FINITE_INPUT: &str = "non-finite-input";
+    pub const NON_FINITE_APPLIED: &str = "non-finite-applied";
+    pub const INVALID_DT: &str = "invalid-dt";
+    pub const NO_DIFFERENTIATOR: &str = "no-differentiator";
+    pub const OVERFLOW: &str = "overflow";
+    /// A vector of the wrong length (`z`, a bank's arrays).
+    pub const WRONG_LENGTH: &str = "wrong-length";
+    /// An input that is not a float vector.
+    pub const WRONG_TYPE: &str = "wrong-type";
+}
+
+/// A `ConfigError` to raise: the message and its fields.
+#[derive(Clone, Debug)]
+pub struct ConfigFault {
+    message: String,
+    parameter: Option<String>,
+    stage: Option<usize>,
+    rule: Option<String>,
+}
+
+impl ConfigFault {
+    /// `parameter` broke `rule`; the message is `"{parameter} {rule}"`.
+    pub fn new(parameter: &str, rule: impl Into<String>) -> Self {
+        let rule = rule.into();
+        Self {
+            message: format!("{parameter} {rule}"),
+            parameter: Some(parameter.to_owned()),
+            stage: None,
+            rule: Some(rule),
+        }
+    }
+
+    /// Appends `" (got {got})"` to the message.
+    pub fn got(mut self, got: impl Display) -> Self {
+        self.message = format!("{} (got {got})", self.message);
+        self
+    }
+
+    /// Another message for the same fields.
+    pub fn message(mut self, message: impl Into<String>) -> Self {
+        self.message = message.into();
+        self
+    }
+
+    /// famcc-core's error: its parameter, stage (from 1) and rule.
+    pub fn core(e: famcc_core::ConfigError) -> Self {
+        Self {
+            message: e.to_string(),
+            parameter: Some(e.parameter.to_owned()),
+            stage: e.stage.map(|i| i + 1),
+            rule: Some(e.rule.to_owned()),
+        }
+    }
+}
+
+impl From<ConfigFault> for PyErr {
+    fn from(f: ConfigFault) -> PyErr {
+        PyErr::new::<ConfigError, _>(f)
+    }
+}
+
+impl PyErrArguments for ConfigFault {
+    /// The exception instance itself (raised as is).
+    fn arguments(self, py: Python<'_>) -> Py<PyAny> {
+        let fill = |kw: &Bound<'_, PyDict>| -> PyResult<()> {
+            kw.set_item("parameter", self.parameter.as_deref())?;
+            kw.set_item("stage", self.stage)?;
+            kw.set_item("rule", self.rule.as_deref())
+        };
+        instance(py, &py.get_type::<ConfigError>(), &self.message, fill)
+    }
+}
+
+/// A `StepError` to raise: the message, the kind and the input at fault.
+#[derive(Clone, Debug)]
+pub struct StepFault {
+    message: String,
+    kind: &'static str,
+    parameter: Option<&'static str>,
+}
+
+impl StepFault {
+    /// A step error of `kind` (see [`kind`]) about `parameter`.
+    pub fn new(kind: &'static str, parameter: Option<&'static str>, message: impl Into<String>) -> Self {
+        Self {
+            message: message.into(),
+            kind,
+            parameter,
+        }
+    }
+}
+
+impl From<StepFault> for PyErr {
+    fn from(f: StepFault) -> PyErr {
+        PyErr::new::<StepError, _>(f)
+    }
+}
+
+impl PyErrArguments for StepFault {
+    fn arguments(self, py: Python<'_>) -> Py<PyAny> {
+        let fill = |kw: &Bound<'_, PyDict>| -> PyResult<()> {
+            kw.set_item("kind", self.kind)?;
+            kw.set_item("parameter", self.parameter)
+        };
+        instance(py, &py.get_type::<StepError>(), &self.message, fill)
+    }
+}
+
+/// `cls(message, **fields)` (the message alone if that fails, which the
+/// class's `__init__` cannot for these fields).
+fn instance<'py>(
+    py: Python<'py>,
+    cls: &Bound<'py, PyType>,
+    message: &str,
+    fill: impl FnOnce(&Bound<'py, PyDict>) -> PyResult<()>,
+) -> Py<PyAny> {
+    let build = || -> PyResult<Py<PyAny>> {
+        let kw = PyDict::new(py);
+        fill(&kw)?;
+        Ok(cls.call((message,), Some(&kw))?.unbind())
+    };
+    build().unwrap_or_else(|_| PyString::new(py, message).into_any().unbind())
+}
 
 /// famcc-core's configuration error as a Python `ConfigError`.
 pub fn config_err(e: famcc_core::ConfigError) -> PyErr {
-    ConfigError::new_err(e.to_string())
+    ConfigFault::core(e).into()
 }
 
-/// famcc-core's step error as a Python `StepError`.
-pub fn step_err(e: famcc_core::StepError) -> PyErr {
-    StepError::new_err(e.to_string())
+/// famcc-core's configuration error, the message followed by `(got {got})`.
+pub fn config_err_got(e: famcc_core::ConfigError, got: impl Display) -> PyErr {
+    let f = ConfigFault::core(e);
+    let message = format!("{} (got {got})", f.message);
+    f.message(message).into()
+}
+
+/// famcc-core's step error as a Python `StepError`; `input` names the
+/// measured input of the call (`"e"`, `"z"`, ...).
+pub fn step_err(e: famcc_core::StepError, input: &'static str) -> PyErr {
+    use famcc_core::StepError as E;
+    let (k, parameter) = match e {
+        E::NonFiniteInput => (kind::NON_FINITE_INPUT, Some(input)),
+        E::NonFiniteApplied => (kind::NON_FINITE_APPLIED, Some("applied")),
+        E::InvalidDt => (kind::INVALID_DT, Some("dt")),
+        E::NoDifferentiator => (kind::NO_DIFFERENTIATOR, Some("differentiator")),
+        E::Overflow => (kind::OVERFLOW, None),
+    };
+    StepFault::new(k, parameter, e.to_string()).into()
+}
+
+/// Adds the classes to the module and gives the exceptions their methods.
+pub fn install(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    let config = py.get_type::<ConfigError>();
+    for name in ["parameter", "stage", "rule"] {
+        config.setattr(name, py.None())?;
+    }
+    set_method(
+        &config,
+        "__init__",
+        config_init,
+        "The message, then the fields (keyword-only).",
+    )?;
+    let step = py.get_type::<StepError>();
+    for name in ["kind", "parameter"] {
+        step.setattr(name, py.None())?;
+    }
+    set_method(
+        &step,
+        "__init__",
+        step_init,
+        "The message, then the fields (keyword-only).",
+    )?;
+    let argument = py.get_type::<ArgumentTypeError>();
+    set_method(&argument, "add_note", argument_add_note, ADD_NOTE_DOC)?;
+    m.add("ConfigError", config)?;
+    m.add("StepError", step)?;
+    m.add("FamccWarning", py.get_type::<FamccWarning>())?;
+    m.add("DesignWarning", py.get_type::<DesignWarning>())?;
+    m.add("ArgumentTypeError", argument)?;
+    Ok(())
+}
+
+/// A keyword field of an exception: its name, its check, and what the check wants.
+type Field = (&'static str, fn(&Bound<'_, PyAny>) -> bool, &'static str);
+
+/// `ValueError.__init__(obj, *args)`, then the keyword fields `names` (each
+/// checked by `check`) as attributes.
+fn init_fields(
+    obj: &Bound<'_, PyAny>,
+    args: &Bound<'_, PyTuple>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+    names: &[Field],
+) -> PyResult<Py<PyAny>> {
+    let py = obj.py();
+    let cls = obj.get_type().name()?.to_string();
+    let mut values: Vec<Bound<'_, PyAny>> = names.iter().map(|_| py.None().into_bound(py)).collect();
+    if let Some(kw) = kwargs {
+        for (key, value) in kw.iter() {
+            let key: String = key.extract()?;
+            let found = names
+                .iter()
+                .zip(values.iter_mut())
+                .find(|((n, _, _), _)| *n == key);
+            let Some(((_, ok, what), slot)) = found else {
+                return Err(PyTypeError::new_err(format!(
+                    "{cls}() got an unexpected keyword argument '{key}'"
+                )));
+            };
+            if !value.is_none() && !ok(&value) {
+                return Err(PyTypeError::new_err(format!(
+                    "{cls}() argument '{key}' must be {what} or None, not {}",
+                    value.get_type().name()?
+                )));
+            }
+            *slot = value;
+        }
+    }
+    let init = py.get_type::<PyValueError>().getattr("__init__")?;
+    let mut full = vec![obj.clone()];
+    full.extend(args.iter());
+    init.call1(PyTuple::new(py, full)?)?;
+    for ((name, _, _), value) in names.iter().zip(values) {
+        obj.setattr(*name, value)?;
+    }
+    Ok(py.None())
+}
+
+fn is_str(v: &Bound<'_, PyAny>) -> bool {
+    v.is_instance_of::<PyString>()
+}
+
+/// An int >= 1 (not a bool).
+fn is_stage(v: &Bound<'_, PyAny>) -> bool {
+    v.is_instance_of::<PyInt>() && !v.is_instance_of::<PyBool>() && v.extract::<usize>().is_ok_and(|s| s >= 1)
+}
+
+fn config_init(
+    obj: &Bound<'_, PyAny>,
+    args: &Bound<'_, PyTuple>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Py<PyAny>> {
+    init_fields(
+        obj,
+        args,
+        kwargs,
+        &[
+            ("parameter", is_str, "a str"),
+            ("stage", is_stage, "an int >= 1"),
+            ("rule", is_str, "a str"),
+        ],
+    )
+}
+
+fn step_init(
+    obj: &Bound<'_, PyAny>,
+    args: &Bound<'_, PyTuple>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Py<PyAny>> {
+    init_fields(
+        obj,
+        args,
+        kwargs,
+        &[("kind", is_str, "a str"), ("parameter", is_str, "a str")],
+    )
+}
+
+const ADD_NOTE_DOC: &str = "Adds a note; the note ``while processing 'name'`` becomes the message's \
+     prefix ``argument 'name': `` instead.";
+
+/// pyo3 attributes an argument's extraction error with the note "while
+/// processing 'dt'"; `ArgumentTypeError.add_note` moves that name into the
+/// message (`argument 'dt': must be ...`). Other notes stay notes.
+fn argument_add_note(
+    obj: &Bound<'_, PyAny>,
+    args: &Bound<'_, PyTuple>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Py<PyAny>> {
+    const PREFIX: &str = "while processing '";
+    let py = obj.py();
+    let note: Option<String> = match (args.len(), kwargs.map_or(0, |k| k.len())) {
+        (1, 0) => args.get_item(0)?.extract().ok(),
+        _ => None,
+    };
+    let current: Bound<'_, PyTuple> = obj.getattr("args")?.cast_into()?;
+    if let Some(name) = note
+        .as_deref()
+        .and_then(|n| n.strip_prefix(PREFIX))
+        .and_then(|n| n.strip_suffix('\''))
+    {
+        if current.len() == 1 {
+            let message = format!("argument '{name}': {}", current.get_item(0)?.str()?);
+            obj.setattr("args", PyTuple::new(py, [message])?)?;
+            return Ok(py.None());
+        }
+    }
+    let add_note = py.get_type::<PyBaseException>().getattr("add_note")?;
+    let mut full = vec![obj.clone()];
+    full.extend(args.iter());
+    Ok(add_note.call(PyTuple::new(py, full)?, kwargs)?.unbind())
 }

@@ -4,7 +4,7 @@
 use crate::args::per_stage;
 use crate::array::map_float_or_array;
 use crate::differentiator::to_array;
-use crate::errors::{config_err, ConfigError};
+use crate::errors::{config_err, ConfigFault};
 use crate::laws::Law;
 use crate::names::TRANSITION;
 use crate::orders::with_order;
@@ -151,10 +151,10 @@ pub fn manifold<'py>(
     skew: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let n = z.len().saturating_sub(1);
-    let what = |name: &str| format!("{name} must have len(z) - 1");
-    let laws = per_stage(feedback, n, &what("feedback"), |o| Ok(o.clone()))?;
+    const RULE: &str = "must have len(z) - 1";
+    let laws = per_stage(feedback, n, ("feedback", RULE), |o| Ok(o.clone()))?;
     let skews: Vec<Option<Bound<'py, PyAny>>> = match skew {
-        Some(s) => per_stage(s, n, &what("skew"), |o| Ok(Some(o.clone())))?,
+        Some(s) => per_stage(s, n, ("skew", RULE), |o| Ok(Some(o.clone())))?,
         None => vec![None; n],
     };
     let prepared: Vec<SkewedLaw<f64>> = laws
@@ -162,14 +162,16 @@ pub fn manifold<'py>(
         .zip(skews.iter())
         .map(|(l, s)| prepare(l, s.as_ref(), "feedback"))
         .collect::<PyResult<_>>()?;
-    check_order(z.len())
-        .map_err(|e| ConfigError::new_err(format!("z: one entry per order, {e} (got {})", z.len())))?;
+    check_order(z.len()).map_err(|e| {
+        let message = format!("z: one entry per order, {e} (got {})", z.len());
+        PyErr::from(ConfigFault::new("z", "must have one entry per order").message(message))
+    })?;
     if z.iter().any(|v| !v.is_finite()) {
-        return Err(ConfigError::new_err("z must be finite"));
+        return Err(ConfigFault::new("z", "must be finite").into());
     }
     let stages = with_order!(z.len(), N => to_array::<f64, N>(&z)
         .map(|a| core_manifold::evaluate::<f64, N>(&a, &prepared).stages.to_vec()), _ => None);
-    let stages = stages.ok_or_else(|| ConfigError::new_err("z must have one entry per order"))?;
+    let stages = stages.ok_or_else(|| PyErr::from(ConfigFault::new("z", "must have one entry per order")))?;
     Ok(PyArray1::from_vec(py, stages))
 }
 

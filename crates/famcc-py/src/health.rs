@@ -3,22 +3,14 @@
 //! `famcc.DesignWarning`.
 
 use crate::controller::PyController;
-use pyo3::exceptions::PyUserWarning;
+use crate::errors::DesignWarning;
 use pyo3::prelude::*;
 use std::ffi::CString;
 
-/// Emits `famcc.DesignWarning` (a `UserWarning` when famcc's Python package
-/// is not importable).
+/// Emits `famcc.DesignWarning` (the binding's own class, crate::errors).
 pub fn design_warning(py: Python<'_>, message: &str) -> PyResult<()> {
-    let category = match py
-        .import("famcc._common")
-        .and_then(|m| m.getattr("DesignWarning"))
-    {
-        Ok(c) => c,
-        Err(_) => py.get_type::<PyUserWarning>().into_any(),
-    };
     let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
-    PyErr::warn(py, &category, &text, 2)
+    PyErr::warn(py, &py.get_type::<DesignWarning>(), &text, 2)
 }
 
 impl PyController {

@@ -2,7 +2,7 @@
 //! `repr`, pickling, the paper's designs), and unpickling.
 
 use crate::controller::PyController;
-use crate::errors::ConfigError;
+use crate::errors::ConfigFault;
 use crate::names::{constraint_name, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::spec::{RhoE, Spec};
 use famcc_core::Constraint;
@@ -71,6 +71,15 @@ impl Spec {
         Ok(d)
     }
 
+    /// `Class(key=value, ...)` of [`Spec::kwargs`].
+    pub fn repr(&self, py: Python<'_>, class: &str) -> PyResult<String> {
+        let mut parts = Vec::new();
+        for (k, v) in self.kwargs(py)?.iter() {
+            parts.push(format!("{}={}", k.str()?, v.repr()?));
+        }
+        Ok(format!("{class}({})", parts.join(", ")))
+    }
+
     /// The keyword arguments of the design alone (no `dt`): the law and the
     /// skew as single objects at order 2, no `skew` when there is none.
     pub fn design_kwargs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -134,7 +143,7 @@ impl Spec {
             "transition" => TRANSITION.name(self.transition).into_pyobject(py)?.into_any(),
             "initial_derivatives" => self.initial_derivatives.clone().into_pyobject(py)?.into_any(),
             "dtype" => DTYPE.name(self.dtype).into_pyobject(py)?.into_any(),
-            other => return Err(ConfigError::new_err(format!("no keyword argument {other:?}"))),
+            other => return Err(ConfigFault::new(other, "is no keyword argument").into()),
         })
     }
 }
@@ -146,14 +155,14 @@ pub fn _controller_from_state<'py>(
     kwargs: &Bound<'py, PyDict>,
     state: Vec<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let cls = py.import("famcc._core")?.getattr("Controller")?;
+    let cls = py.get_type::<PyController>();
     let kw = kwargs.copy()?;
     let order = kw
         .get_item("order")?
-        .ok_or_else(|| ConfigError::new_err("order missing"))?;
+        .ok_or_else(|| ConfigFault::new("order", "missing"))?;
     let dt = kw
         .get_item("dt")?
-        .ok_or_else(|| ConfigError::new_err("dt missing"))?;
+        .ok_or_else(|| ConfigFault::new("dt", "missing"))?;
     kw.del_item("order")?;
     kw.del_item("dt")?;
     let obj = cls.call((order, dt), Some(&kw))?;

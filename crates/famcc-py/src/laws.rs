@@ -3,7 +3,7 @@
 //! paper's designs); validation is famcc-core's.
 
 use crate::array::map_float_or_array;
-use crate::errors::{config_err, ConfigError};
+use crate::errors::{config_err, ConfigFault};
 use crate::number::Num;
 use famcc_core::{Feedback, Real};
 use pyo3::prelude::*;
@@ -288,16 +288,16 @@ impl Law {
         if let Ok(l) = obj.cast::<MoulayDiscontinuous>() {
             return Ok(Law::Moulay(*l.get()));
         }
-        Err(ConfigError::new_err(format!(
-            "{name} must be a law (Linear, FiniteTime, FixedTime, VariableExponent, \
-             MoulayDiscontinuous){}, got {}",
+        let rule = format!(
+            "must be a law (Linear, FiniteTime, FixedTime, VariableExponent, MoulayDiscontinuous){}",
             if name == "feedback" {
                 " or a list of them"
             } else {
                 ""
-            },
-            obj.repr()?
-        )))
+            }
+        );
+        let message = format!("{name} {rule}, got {}", obj.repr()?);
+        Err(ConfigFault::new(name, rule).message(message).into())
     }
 
     pub fn feedback<T: Real>(&self) -> Feedback<T> {

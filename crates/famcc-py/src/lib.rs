@@ -5,9 +5,11 @@
 //!
 //! | module | concern |
 //! |---|---|
+//! | `errors`, `bind` | the exception and warning classes, and their methods |
 //! | `names` | Python names of the core's enumerations |
 //! | `args` | the constructor's arguments, parsed into a typed `spec` |
 //! | `spec` | a controller's configuration, fed to the core's builder |
+//! | `controller_spec`, `replace` | `ControllerSpec`; specs changed or read without text |
 //! | `kwargs` | a spec as keyword arguments (`config()`, `repr`, pickling) |
 //! | `orders`, `dispatch` | run-time order and float type to the core's generics |
 //! | `state` | the state codec (the core's `Snapshot` layout) |
@@ -17,6 +19,7 @@
 //! | `laws`, `differentiator` | laws, skews, `HighGain` |
 //! | `functions`, `array` | building blocks as functions |
 //! | `paper` | the paper's designs and plants |
+//! | `sim`, `sim_plants`, `sim_ctrls` | famcc-sim's loop (`Lockstep`), its plants and controllers |
 
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -24,8 +27,10 @@ use pyo3::types::PyTuple;
 mod args;
 mod array;
 mod bank;
+mod bind;
 mod call_floor;
 mod controller;
+mod controller_spec;
 mod design;
 mod diagnostics;
 mod differentiator;
@@ -39,6 +44,10 @@ mod names;
 mod number;
 mod orders;
 mod paper;
+mod replace;
+mod sim;
+mod sim_ctrls;
+mod sim_plants;
 mod skews;
 mod spec;
 mod state;
@@ -49,15 +58,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_ORDER", famcc_core::config::MAX_ORDER)?;
     m.add("STATE_FIELDS", PyTuple::new(py, famcc_core::SNAPSHOT_FIELDS)?)?;
-    for ty in [
-        py.get_type::<errors::ConfigError>(),
-        py.get_type::<errors::StepError>(),
-    ] {
-        // Importable (and so picklable) as famcc._core.<name>.
-        ty.setattr("__module__", "famcc._core")?;
-    }
-    m.add("ConfigError", py.get_type::<errors::ConfigError>())?;
-    m.add("StepError", py.get_type::<errors::StepError>())?;
+    // ConfigError, StepError, the warnings and ArgumentTypeError.
+    errors::install(m)?;
     m.add_class::<laws::Linear>()?;
     m.add_class::<laws::FiniteTime>()?;
     m.add_class::<laws::FixedTime>()?;
@@ -72,7 +74,15 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<bank::ControllerBank>()?;
     m.add_class::<functions::Skewed>()?;
     m.add_class::<paper::PaperPlant>()?;
+    m.add_class::<sim::Lockstep>()?;
+    m.add_class::<sim_plants::PaperLanes>()?;
     m.add_function(wrap_pyfunction!(kwargs::_controller_from_state, m)?)?;
+    m.add_class::<controller_spec::ControllerSpec>()?;
+    m.add_function(wrap_pyfunction!(
+        controller_spec::_controller_spec_from_kwargs,
+        m
+    )?)?;
+    controller_spec::remember_module(m);
     m.add_function(wrap_pyfunction!(functions::transition_t, m)?)?;
     m.add_function(wrap_pyfunction!(functions::transition_s, m)?)?;
     m.add_function(wrap_pyfunction!(functions::transition_u, m)?)?;

@@ -2,7 +2,7 @@
 //! both to parse arguments and to write them back (`repr`, `config()`,
 //! pickling). A default argument is the name of the core's `Default`.
 
-use crate::errors::ConfigError;
+use crate::errors::ConfigFault;
 use famcc_core::{Discretization, Gamma, Latch, Transition};
 use pyo3::PyResult;
 
@@ -21,7 +21,9 @@ impl<E: Copy + PartialEq> Names<E> {
             .map(|(_, e)| *e)
             .ok_or_else(|| {
                 let list: Vec<String> = self.table.iter().map(|(n, _)| format!("'{n}'")).collect();
-                ConfigError::new_err(format!("{arg} must be one of {} (got {name:?})", list.join(", ")))
+                ConfigFault::new(arg, format!("must be one of {}", list.join(", ")))
+                    .got(format!("{name:?}"))
+                    .into()
             })
     }
 

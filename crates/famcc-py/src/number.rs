@@ -3,11 +3,11 @@
 //! names the argument.
 //!
 //! pyo3 attributes an argument's extraction error with a note ("while
-//! processing 'dt'"); the errors raised here are `famcc._arguments.
-//! ArgumentTypeError`s, which move that name into the message itself:
-//! `argument 'dt': must be a real number, not bool`.
+//! processing 'dt'"); the errors raised here are the binding's
+//! `ArgumentTypeError`s (crate::errors), which move that name into the
+//! message itself: `argument 'dt': must be a real number, not bool`.
 
-use pyo3::exceptions::PyTypeError;
+use crate::errors::ArgumentTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyString};
 use pyo3::Borrowed;
@@ -24,20 +24,14 @@ pub struct Int(pub i64);
 #[derive(Clone, Debug, PartialEq)]
 pub struct Text(pub String);
 
-/// The error for a wrong argument type, as `famcc._arguments.ArgumentTypeError`
-/// (a `TypeError`; a plain `TypeError` if that module cannot be imported).
-fn type_error(py: Python<'_>, what: &str, obj: Borrowed<'_, '_, PyAny>) -> PyErr {
+/// The error for a wrong argument type, an `ArgumentTypeError`.
+fn type_error(what: &str, obj: Borrowed<'_, '_, PyAny>) -> PyErr {
     let got = obj
         .get_type()
         .name()
         .map(|n| n.to_string())
         .unwrap_or_else(|_| String::from("?"));
-    let msg = format!("must be {what}, not {got}");
-    py.import("famcc._arguments")
-        .and_then(|m| m.getattr("ArgumentTypeError"))
-        .and_then(|cls| cls.call1((msg.clone(),)))
-        .map(PyErr::from_value)
-        .unwrap_or_else(|_| PyTypeError::new_err(msg))
+    ArgumentTypeError::new_err(format!("must be {what}, not {got}"))
 }
 
 /// `FromPyObject` for a newtype over a number: bool is refused, as is
@@ -48,11 +42,11 @@ macro_rules! number_newtype {
             type Error = PyErr;
             fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
                 if obj.is_instance_of::<PyBool>() {
-                    return Err(type_error(obj.py(), $what, obj));
+                    return Err(type_error($what, obj));
                 }
                 obj.extract::<$inner>()
                     .map($name)
-                    .map_err(|_| type_error(obj.py(), $what, obj))
+                    .map_err(|_| type_error($what, obj))
             }
         }
     };
@@ -66,7 +60,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Text {
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
         match obj.cast::<PyString>() {
             Ok(s) => Ok(Text(s.to_string())),
-            Err(_) => Err(type_error(obj.py(), "a str", obj)),
+            Err(_) => Err(type_error("a str", obj)),
         }
     }
 }

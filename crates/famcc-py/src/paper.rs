@@ -2,7 +2,7 @@
 //! and plants: `famcc.scenarios` and `famcc.plants` hold no numbers of
 //! their own.
 
-use crate::errors::ConfigError;
+use crate::errors::ConfigFault;
 use crate::names::{DType, VARIANT};
 use crate::spec::Spec;
 use famcc_paper::designs::{self, Design, Example, SAMPLE_PERIOD};
@@ -12,8 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
 fn example(n: u32) -> PyResult<Example> {
-    Example::from_number(n)
-        .ok_or_else(|| ConfigError::new_err(format!("example must be 1, 2 or 3 (got {n})")))
+    Example::from_number(n).ok_or_else(|| ConfigFault::new("example", "must be 1, 2 or 3").got(n).into())
 }
 
 fn variant(name: &str) -> PyResult<Variant> {
@@ -102,16 +101,16 @@ impl PaperPlant {
     fn new(order: usize, variant: &str, gain: f64, amp: Option<f64>, x0: Option<Vec<f64>>) -> PyResult<Self> {
         let v = self::variant(variant)?;
         if !(gain.is_finite() && gain > 0.0) {
-            return Err(ConfigError::new_err(format!(
-                "gain must be finite and > 0 (got {gain})"
-            )));
+            return Err(ConfigFault::new("gain", "must be finite and > 0")
+                .got(gain)
+                .into());
         }
         if let Some(a) = amp {
             if !a.is_finite() {
-                return Err(ConfigError::new_err(format!("amp must be finite (got {a})")));
+                return Err(ConfigFault::new("amp", "must be finite").got(a).into());
             }
         }
-        let bad_x0 = |n: usize| ConfigError::new_err(format!("x0 must hold {n} finite numbers"));
+        let bad_x0 = |n: usize| PyErr::from(ConfigFault::new("x0", format!("must hold {n} finite numbers")));
         let which = match order {
             2 => {
                 let mut p = SecondOrder::new(v);
@@ -137,7 +136,7 @@ impl PaperPlant {
                 }
                 Which::Third(p)
             }
-            n => return Err(ConfigError::new_err(format!("order must be 2 or 3 (got {n})"))),
+            n => return Err(ConfigFault::new("order", "must be 2 or 3").got(n).into()),
         };
         Ok(Self { which })
     }

@@ -2,7 +2,7 @@
 //! paper eqs. (14) and (15)). Each converts to its famcc-core value (and
 //! back, for the paper's designs); validation is famcc-core's.
 
-use crate::errors::{config_err, ConfigError};
+use crate::errors::{config_err, ConfigFault};
 use crate::names::TRANSITION;
 use crate::number::{Num, Text};
 use famcc_core::{Real, Skew, SkewKind, Transition};
@@ -185,10 +185,9 @@ impl SkewSpec {
         if let Ok(s) = obj.cast::<Nonsingular>() {
             return Ok(Some(SkewSpec::Nonsingular(*s.get())));
         }
-        Err(ConfigError::new_err(format!(
-            "skew must be None, Smooth, Nonsingular, or a list of them, got {}",
-            obj.repr()?
-        )))
+        const RULE: &str = "must be None, Smooth, Nonsingular, or a list of them";
+        let message = format!("skew {RULE}, got {}", obj.repr()?);
+        Err(ConfigFault::new("skew", RULE).message(message).into())
     }
 
     pub fn skew<T: Real>(&self) -> Skew<T> {

@@ -1,4 +1,5 @@
-"""One chunk of a campaign: a ControllerBank and a vectorised RK4 in lockstep."""
+"""One chunk of a campaign: its cases as the lanes of the one loop (famcc-sim),
+tallied block by block (:class:`Tally`)."""
 
 from __future__ import annotations
 
@@ -11,10 +12,14 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core
 from famcc.campaigns.controller import _controller
 from famcc.campaigns.noise import noise_keys, standard_normal
-from famcc.families import Family
+from famcc.plants.family import Family
+from famcc.sim import engine
 from famcc.verdicts import STARTUP
+
+__all__ = ["Tally", "run_chunk"]
 
 
 @dataclass
@@ -37,19 +42,73 @@ class _Chunk:
     noise_seed: int
 
 
-def _stack(out: Any, shape: tuple[int, int]) -> np.ndarray:
-    """A right-hand side's value as an ``(n, N)`` float64 array (entries may be scalars)."""
-    if isinstance(out, np.ndarray) and out.shape == shape and out.dtype == np.float64:
-        return out
-    try:
-        arr = np.asarray(out, dtype=np.float64)
-    except ValueError:  # ragged: some entries are scalars
-        arr = np.empty(0)
-    if arr.shape == shape:
-        return arr
-    if len(out) != shape[0]:
-        raise ValueError(f"the family's rhs must return {shape[0]} rows, got {len(out)}")
-    return np.array([np.broadcast_to(np.asarray(c, dtype=np.float64), shape[1:]) for c in out])
+class Tally:
+    """Per-case counters of a campaign, accumulated block by block over the
+    recorded samples (NaN rows: the case had stopped), from which
+    :class:`famcc.CampaignResult` judges every case: the last sample outside
+    ``|z1| < eps``, the first inside, the last saturated one, the saturated
+    samples (and those after the start-up), the samples expanded with
+    headroom (and after the start-up) and ``max |xi|`` of the nominal
+    constraint variable.
+    """
+
+    NAMES = (
+        "last_out",
+        "first_in",
+        "last_sat",
+        "sat_count",
+        "sat_late",
+        "exp_unsat",
+        "exp_unsat_late",
+        "max_xi_nominal",
+    )
+
+    def __init__(self, m: int, eps: float, limits: tuple[float, float] | None, diag: bool) -> None:
+        self.eps, self.limits, self.diag = eps, limits, diag
+        self.last_out = np.full(m, -1, dtype=np.int64)
+        self.first_in = np.full(m, -1, dtype=np.int64)
+        self.last_sat = np.full(m, -1, dtype=np.int64)
+        self.sat_count = np.zeros(m, dtype=np.int64)
+        self.sat_late = np.zeros(m, dtype=np.int64)
+        self.exp_unsat = np.zeros(m, dtype=np.int64)
+        self.exp_unsat_late = np.zeros(m, dtype=np.int64)
+        self.max_xi_nominal = np.zeros(m) if diag else np.full(m, np.nan)
+
+    @staticmethod
+    def _last(mask: np.ndarray, k0: int, prev: np.ndarray) -> np.ndarray:
+        rows = mask.shape[0]
+        any_ = mask.any(axis=0)
+        last = rows - 1 - np.argmax(mask[::-1], axis=0)
+        return np.where(any_, k0 + last, prev)
+
+    def add(self, blk: engine.Block, k0: int, t: np.ndarray) -> None:
+        """Adds the block's rows (samples ``k0 ..``, times ``t``)."""
+        e = blk.e[:, 0, :]
+        kept = ~np.isnan(e)
+        a = np.abs(e)
+        self.last_out = self._last(kept & ~(a < self.eps), k0, self.last_out)
+        inside = kept & (a < self.eps)
+        new = (self.first_in < 0) & inside.any(axis=0)
+        self.first_in = np.where(new, k0 + np.argmax(inside, axis=0), self.first_in)
+        late = (t >= STARTUP)[:, None]
+        v = blk.v[:, 0, :]
+        if self.limits is not None:
+            sat = kept & ((v < self.limits[0]) | (v > self.limits[1]))
+            self.sat_count += sat.sum(axis=0)
+            self.sat_late += (sat & late).sum(axis=0)
+            self.last_sat = self._last(sat, k0, self.last_sat)
+        else:
+            sat = np.zeros_like(kept)
+        if self.diag:
+            xin = np.where(kept, np.abs(blk.diag["xi_nominal"][:, 0, :]), 0.0)
+            np.maximum(self.max_xi_nominal, xin.max(axis=0), out=self.max_xi_nominal)
+            expd = kept & (blk.diag["expansion"][:, 0, :] > 1.0) & ~sat
+            self.exp_unsat += expd.sum(axis=0)
+            self.exp_unsat_late += (expd & late).sum(axis=0)
+
+    def counters(self) -> dict[str, np.ndarray]:
+        """The counters by name."""
+        return {name: getattr(self, name) for name in self.NAMES}
 
 
 _MALLOC_TUNED = False
@@ -85,170 +144,85 @@ def _roomy_malloc() -> None:
         return
 
 
+def _banks(chunk: _Chunk, values: dict[str, np.ndarray], m: int) -> tuple[list[Any], np.ndarray]:
+    """One bank per distinct controller setting, and the lane order that makes
+    every bank's lanes contiguous (``order[j]``: the case of lane ``j``)."""
+    ckeys = [k for k in values if k.startswith("controller.")]
+    if not ckeys:
+        return [_core.ControllerBank(_controller(chunk.controller, {}), m)], np.arange(m)
+    table = np.column_stack([values[k] for k in ckeys])
+    uniq, inverse = np.unique(table, axis=0, return_inverse=True)
+    inverse = np.asarray(inverse).reshape(-1)
+    order = np.argsort(inverse, kind="stable")
+    banks = []
+    for g, row in enumerate(uniq):
+        over = {k.split(".", 1)[1]: float(v) for k, v in zip(ckeys, row)}
+        banks.append(
+            _core.ControllerBank(_controller(chunk.controller, over), int(np.sum(inverse == g)))
+        )
+    return banks, order
+
+
 def run_chunk(chunk: _Chunk) -> dict[str, np.ndarray]:
     """Integrates one chunk in lockstep; returns its raw per-case counters.
 
     Public for executors that need an importable function; call
     :func:`campaign` instead.
     """
-    import famcc
-
     _roomy_malloc()
     started = time.perf_counter()
     m = chunk.stop - chunk.start
     n = chunk.family.order
-    values = chunk.values
+    banks, order = _banks(chunk, chunk.values, m)
+    values = {k: v[order] for k, v in chunk.values.items()}
     params = chunk.family.full_params({k: v for k, v in values.items() if k in chunk.family.params})
-    x = np.empty((n, m))
+    x0 = np.empty((n, m))
     nominal_x0 = chunk.family.x0
     for i in range(n):
-        x[i] = values.get(f"x{i + 1}(0)", nominal_x0[i])
-
-    # one bank per distinct controller setting in the chunk
-    ckeys = [k for k in values if k.startswith("controller.")]
-    groups: list[tuple[Any, np.ndarray | None]] = []
-    if ckeys:
-        table = np.column_stack([values[k] for k in ckeys])
-        uniq, inverse = np.unique(table, axis=0, return_inverse=True)
-        inverse = np.asarray(inverse).reshape(-1)
-        for g, row in enumerate(uniq):
-            idx = np.flatnonzero(inverse == g)
-            over = {k.split(".", 1)[1]: float(v) for k, v in zip(ckeys, row)}
-            ctrl = _controller(chunk.controller, over)
-            groups.append((famcc.ControllerBank(ctrl, len(idx)), idx))
-        if len(groups) == 1:
-            groups = [(groups[0][0], None)]
-    else:
-        groups.append((famcc.ControllerBank(_controller(chunk.controller, {}), m), None))
-    has_diag = all(hasattr(b, "xi_nominal") and hasattr(b, "expansion") for b, _ in groups)
-
-    # reference: per-case arrays where dispersed, else the nominal object
-    rkind = chunk.reference
-    ref_vals: dict[str, Any] = dict(chunk.reference_params)
-    ref_vals.update(
-        {k.split(".", 1)[1]: v for k, v in values.items() if k.startswith("reference.")}
-    )
+        x0[i] = values.get(f"x{i + 1}(0)", nominal_x0[i])
+    ref: dict[str, Any] = dict(chunk.reference_params)
+    ref.update({k.split(".", 1)[1]: v for k, v in values.items() if k.startswith("reference.")})
     sigma = values.get("noise.sigma")
-    keys = noise_keys(chunk.noise_seed, np.arange(chunk.start, chunk.stop))
-
-    K = chunk.steps + 1
-    dt, lims, eps = chunk.dt, chunk.u_limits, chunk.eps
-    h = dt / chunk.substeps
-    half = 0.5 * h
-    sixth = h / 6.0
-    rhs = chunk.family._rhs
-    shape = (n, m)
-
-    last_out = np.full(m, -1, dtype=np.int64)
-    first_in = np.full(m, -1, dtype=np.int64)
-    last_sat = np.full(m, -1, dtype=np.int64)
-    sat_count = np.zeros(m, dtype=np.int64)
-    sat_late = np.zeros(m, dtype=np.int64)
-    exp_unsat = np.zeros(m, dtype=np.int64)
-    exp_unsat_late = np.zeros(m, dtype=np.int64)
-    max_xi_nom = np.zeros(m) if has_diag else np.full(m, np.nan)
-    diverged_at = np.full(m, -1, dtype=np.int64)
-    alive = np.ones(m, dtype=bool)
-    any_dead = False
-    pending_first = m
-    frozen: dict[str, np.ndarray] = {}
-    counters = {
-        "last_out": last_out,
-        "first_in": first_in,
-        "last_sat": last_sat,
-        "sat_count": sat_count,
-        "sat_late": sat_late,
-        "exp_unsat": exp_unsat,
-        "exp_unsat_late": exp_unsat_late,
-        "max_xi_nominal": max_xi_nom,
-    }
-    v = np.empty(m)
-    xin = np.empty(m)
-    fac = np.empty(m)
-    overflows = 0
-    amp: Any = ref_vals.get("amplitude")
-    omega: Any = ref_vals.get("omega")
-    phase: Any = ref_vals.get("phase")
-    const: Any = ref_vals.get("value")
-
+    keys = noise_keys(chunk.noise_seed, np.arange(chunk.start, chunk.stop)[order])
+    K, dt = chunk.steps + 1, chunk.dt
+    run = engine.start(
+        chunk.family.lanes(params, m),
+        banks,
+        dt=dt,
+        samples=K,
+        substeps=chunk.substeps,
+        x0=x0,
+        outputs=[0],
+        limits=[chunk.u_limits],
+        state_bound=chunk.state_bound,
+        detail="campaign",
+        keep_states=False,
+    )
+    tally = Tally(m, chunk.eps, chunk.u_limits, diag=True)
     with np.errstate(all="ignore"):
-        for k in range(K):
-            t = k * dt
-            if rkind == "sine":
-                yd: Any = amp * np.sin(omega * t + phase)
+        while not run.done:
+            k0 = run.sim.sample
+            ks = np.arange(k0, min(K, k0 + run.block_rows))
+            t = ks * dt
+            if chunk.reference == "sine":
+                yd = ref["amplitude"] * np.sin(
+                    np.multiply.outer(t, np.broadcast_to(ref["omega"], (m,))) + ref["phase"]
+                )
             else:
-                yd = const
-            e = x[0] - yd
-            a = np.abs(e)
-            np.copyto(last_out, k, where=~(a < eps))
-            if pending_first:
-                newly = (a < eps) & (first_in < 0)
-                if newly.any():
-                    first_in[newly] = k
-                    pending_first -= int(newly.sum())
+                yd = np.broadcast_to(np.asarray(ref["value"], dtype=np.float64), (len(ks), m))
+            noise = None
             if sigma is not None:
-                e = e + sigma * standard_normal(keys, k)
-            if any_dead:
-                e = np.where(alive, e, 0.0)
-            e = np.ascontiguousarray(e, dtype=np.float64)
-            for bank, lanes in groups:
-                if lanes is None:
-                    v = bank.step(e)
-                    overflows += bank.overflows
-                    if has_diag:
-                        xin = bank.xi_nominal
-                        fac = bank.expansion
-                else:
-                    v[lanes] = bank.step(np.ascontiguousarray(e[lanes]))
-                    overflows += bank.overflows
-                    if has_diag:
-                        xin[lanes] = bank.xi_nominal
-                        fac[lanes] = bank.expansion
-            if lims is not None:
-                sat = (v < lims[0]) | (v > lims[1])
-                u = np.minimum(np.maximum(v, lims[0]), lims[1])
-                sat_count += sat
-                np.copyto(last_sat, k, where=sat)
-                if t >= STARTUP:
-                    sat_late += sat
-            else:
-                sat = None
-                u = v
-            if has_diag:
-                np.maximum(max_xi_nom, np.abs(xin), out=max_xi_nom)
-                expd = fac > 1.0
-                if sat is not None:
-                    expd &= ~sat
-                exp_unsat += expd
-                if t >= STARTUP:
-                    exp_unsat_late += expd
-            if k == K - 1:
-                break
-            for j in range(chunk.substeps):
-                tj = t + j * h
-                k1 = _stack(rhs(tj, x, u, params), shape)
-                k2 = _stack(rhs(tj + half, x + half * k1, u, params), shape)
-                k3 = _stack(rhs(tj + half, x + half * k2, u, params), shape)
-                k4 = _stack(rhs(tj + h, x + h * k3, u, params), shape)
-                x = x + sixth * (k1 + 2.0 * (k2 + k3) + k4)
-            bad = ~np.all(np.abs(x) <= chunk.state_bound, axis=0)
-            if any_dead:
-                bad &= alive
-            if bad.any():
-                idx_bad = np.flatnonzero(bad)
-                for name, arr in counters.items():
-                    frozen.setdefault(name, arr.copy())[idx_bad] = arr[idx_bad]
-                diverged_at[idx_bad] = k + 1
-                alive[idx_bad] = False
-                any_dead = True
-                x[:, idx_bad] = 0.0
-    dead = ~alive
-    out = {
-        name: np.where(dead, frozen[name], arr) if name in frozen else arr
-        for name, arr in counters.items()
-    }
-    out["diverged_at"] = diverged_at
-    out["overflows"] = np.array([overflows])
-    out["has_diagnostics"] = np.array([has_diag])
+                noise = np.stack([sigma * standard_normal(keys, int(k)) for k in ks])
+            blk = run.block(yd[:, None, :], None if noise is None else noise[:, None, :])
+            if blk.plant_error is not None:
+                raise blk.plant_error
+            tally.add(blk, k0, t)
+    diverged_at = np.array([-1 if s is None else s[0] for s in run.stops], dtype=np.int64)
+    back = np.empty(m, dtype=np.int64)
+    back[order] = np.arange(m)
+    out = {name: arr[back] for name, arr in tally.counters().items()}
+    out["diverged_at"] = diverged_at[back]
+    out["overflows"] = np.array([int(run.sim.held)])
+    out["has_diagnostics"] = np.array([True])
     out["seconds"] = np.array([time.perf_counter() - started])
     return out

@@ -7,32 +7,22 @@ from typing import Any
 
 import numpy as np
 
-from famcc.simulation import _as_float
+from famcc import _core, bounds
+from famcc.metrics import preset_accuracy
 
 
 def _controller(config: Mapping[str, Any], overrides: Mapping[str, float]) -> Any:
-    import famcc
-
     kw = dict(config)
     order, dt = kw.pop("order"), kw.pop("dt")
     kw.update(overrides)
-    return famcc.Controller(order, dt, **kw)
+    return _core.Controller(order, dt, **kw)
 
 
-def _preset_accuracy(cfg: Mapping[str, Any]) -> float | None:
-    order, kind = cfg.get("order"), cfg.get("constraint")
-    if order == 1 or (order == 2 and kind == "lateral"):
-        return _as_float(cfg.get("eps"))
-    skews = cfg.get("skew")
-    first = skews[0] if isinstance(skews, (list, tuple)) and skews else skews
-    eps_z = getattr(first, "eps_z", None)
-    return _as_float(eps_z)
+_preset_accuracy = preset_accuracy
 
 
 def _corollary_time(cfg: Mapping[str, Any], z1_0: np.ndarray) -> np.ndarray:
     """``T'`` of the paper's corollaries for the design (per case for the finite-time law)."""
-    from famcc import bounds
-
     laws = cfg.get("feedback") or []
     laws = list(laws) if isinstance(laws, (list, tuple)) else [laws]
     names = {type(law).__name__ for law in laws}

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from famcc.simulation import _is_number
+from famcc.plants.base import is_real as _is_number
 
 
 class Distribution:

@@ -14,7 +14,7 @@ import numpy as np
 from famcc.campaigns.controller import _controller, _corollary_time
 from famcc.campaigns.noise import NoisySensor, noise_keys
 from famcc.campaigns.stats import Rate, _pct, _rate
-from famcc.simulation import Constant, Sine
+from famcc.signals import Constant, Sine
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -58,7 +58,7 @@ class Case:
 
     def simulate(self, **kwargs: Any) -> Any:
         """:func:`famcc.simulate` of this case (keywords go to it); a :class:`famcc.SimResult`."""
-        from famcc.simulation import simulate
+        from famcc.sim import simulate
 
         kw = {"reference": self.reference, "u_limits": self.u_limits, "substeps": self.substeps}
         kw.update(kwargs)

@@ -17,8 +17,9 @@ from famcc.campaigns.controller import _corollary_time, _preset_accuracy
 from famcc.campaigns.dispersion import Distribution, _finite, distribution
 from famcc.campaigns.executors import _execute
 from famcc.campaigns.result import CRITERIA, CampaignResult
-from famcc.families import Family, family
-from famcc.simulation import Constant, Sine, _is_number
+from famcc.plants import Family, family
+from famcc.plants.base import is_real as _is_number
+from famcc.signals import Constant, Sine
 
 #: Default state bound: a case whose ``|x_i|`` exceeds it counts as diverged.
 STATE_BOUND = 1e6

@@ -8,7 +8,7 @@ from typing import Any
 
 from famcc.campaigns.result import CampaignResult
 from famcc.campaigns.run import campaign
-from famcc.simulation import Constant, Sine
+from famcc.signals import Constant, Sine
 
 
 def _law(spec: Any, kind: str) -> Any:

@@ -163,7 +163,7 @@ def tune(
     def run(d: Design, measure: bool = False, substeps: int = SEARCH_SUBSTEPS) -> Any:
         with warnings.catch_warnings():  # a candidate's health warnings are its verdict's
             warnings.simplefilter("ignore", DesignWarning)
-            ctrl = d.controller()
+            ctrl: Any = d.controller()
             if noise_std:
                 ctrl = _Noisy(ctrl, noise_std, seed)
             try:
@@ -190,7 +190,9 @@ def tune(
                 g0, _ = plant.gain_and_drift(0.0, np.asarray(plant.x0, dtype=float))
             except NotImplementedError as exc:
                 raise famcc.ConfigError(
-                    f"tune needs gain= and hold_input= for a plant without gain_and_drift ({exc})"
+                    f"tune needs gain= and hold_input= for a plant without gain_and_drift ({exc})",
+                    parameter="gain" if g is None else "hold_input",
+                    rule="must be given for a plant without gain_and_drift",
                 ) from exc
             first = design(
                 order,
@@ -290,6 +292,7 @@ def tune(
         (*best.checks, finding),
         tuple(t for t, _ in trials),
         why,
+        spec=best.spec,
     )
 
 
@@ -315,12 +318,11 @@ def _max_error(plant: Any, reference: Any, order: int, horizon: float) -> float:
     still, a bound on what the loop must recover from (floored at a tiny value)."""
     import numpy as np
 
-    from famcc.simulation import _reference_derivatives
+    from famcc.signals import reference_table
 
     y0 = float(np.asarray(plant.x0, dtype=float)[0])
-    fn, _ = _reference_derivatives(reference, order)
-    ts = np.linspace(0.0, horizon, 201)
-    return max(max(abs(y0 - float(fn(float(t))[0])) for t in ts), 1e-9)
+    table, _ = reference_table(reference, order, np.linspace(0.0, horizon, 201))
+    return max(float(np.max(np.abs(y0 - table[:, 0]))), 1e-9)
 
 
 def _score(t: Trial) -> tuple[int, float]:

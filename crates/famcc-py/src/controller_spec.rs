@@ -1,0 +1,187 @@
+//! `famcc._core.ControllerSpec`: a parsed controller configuration (the
+//! binding's [`Spec`]) that builds controllers without keyword arguments or
+//! text: what `famcc.design` returns besides its numbers, and what
+//! `Controller.replace` copies. Also the construction of a
+//! [`PyController`] from a spec, with the constructor's warnings.
+
+use crate::controller::PyController;
+use crate::dispatch::Core;
+use crate::errors::config_err;
+use crate::health::design_warning;
+use crate::names::DTYPE;
+use crate::replace::spec_from_kwargs;
+use crate::spec::{RhoE, Spec};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyTuple};
+
+/// The module `famcc._core`, kept at its initialization (pickling names
+/// its functions).
+static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
+
+/// Keeps the module for [`module_function`].
+pub fn remember_module(m: &Bound<'_, PyModule>) {
+    let _ = MODULE.set(m.py(), m.clone().unbind());
+}
+
+/// The function `name` of `famcc._core` (for `__reduce__`).
+pub fn module_function<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+    match MODULE.get(py) {
+        Some(m) => m.bind(py).getattr(name),
+        None => py.import("famcc._core")?.getattr(name),
+    }
+}
+
+impl PyController {
+    /// Builds the controller of `spec`, whose `rho_e` then shows the margin
+    /// in effect.
+    pub fn from_spec(mut spec: Spec) -> PyResult<Self> {
+        let core = Core::build(&spec).map_err(config_err)?;
+        spec.rho_e = RhoE::Given(core.rho_e());
+        Ok(Self {
+            core,
+            spec,
+            health_warned: false,
+        })
+    }
+
+    /// [`PyController::from_spec`], then the constructor's warnings: the
+    /// legal but risky choices (famcc-core's `Config::lint`), once each.
+    pub fn from_spec_warned(py: Python<'_>, spec: Spec) -> PyResult<Self> {
+        let c = Self::from_spec(spec)?;
+        for finding in c.core.lint() {
+            design_warning(py, &finding)?;
+        }
+        Ok(c)
+    }
+
+    pub fn set_state_vec(&mut self, v: &[f64]) -> PyResult<()> {
+        self.core.set_state(v)
+    }
+}
+
+/// A controller's configuration, parsed and typed; :meth:`build` makes the
+/// controller.
+///
+/// Returned by :func:`famcc.design` (``Design.spec``): the design's
+/// configuration, built into a :class:`Controller` without keyword
+/// arguments or text. Frozen and picklable. Its values are checked when a
+/// controller is built (by famcc-core, as in the :class:`Controller`
+/// constructor).
+///
+/// Examples
+/// --------
+/// >>> import famcc
+/// >>> d = famcc.design(2, 1e-3, u_limits=(-12, 12), eps=0.01, settle_time=2.0,
+/// ...                  hold_input=4.0, gain=25.0)
+/// >>> spec = d.spec
+/// >>> spec.order, spec.dt
+/// (2, 0.001)
+/// >>> spec.build().config() == d.controller().config()
+/// True
+/// >>> spec.replace(k_u=10.0).config()["k_u"]
+/// 10.0
+#[pyclass(frozen, module = "famcc._core", name = "ControllerSpec")]
+#[derive(Clone)]
+pub struct ControllerSpec {
+    pub spec: Spec,
+}
+
+#[pymethods]
+impl ControllerSpec {
+    /// System order n.
+    #[getter]
+    fn order(&self) -> usize {
+        self.spec.order
+    }
+
+    /// Sample period, s.
+    #[getter]
+    fn dt(&self) -> f64 {
+        self.spec.dt
+    }
+
+    /// "float64" or "float32".
+    #[getter]
+    fn dtype(&self) -> &'static str {
+        DTYPE.name(self.spec.dtype)
+    }
+
+    /// A fresh controller of this configuration.
+    ///
+    /// Returns
+    /// -------
+    /// Controller
+    ///     Equal to ``Controller(**spec.config())``.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     A value famcc-core rejects (the message names it).
+    ///
+    /// Warns
+    /// -----
+    /// famcc.DesignWarning
+    ///     For a legal but risky configuration, as the constructor.
+    fn build(&self, py: Python<'_>) -> PyResult<PyController> {
+        PyController::from_spec_warned(py, self.spec.clone())
+    }
+
+    /// This configuration with the named fields changed.
+    ///
+    /// Parameters
+    /// ----------
+    /// **overrides
+    ///     Keyword arguments of :class:`Controller` (the types and names of
+    ///     :meth:`Controller.replace`; not ``order``, ``constraint`` or
+    ///     ``integral``). Checked when the spec is built.
+    ///
+    /// Returns
+    /// -------
+    /// ControllerSpec
+    ///     The changed configuration.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     A value of the wrong shape (a list of the wrong length, a name
+    ///     that is not a choice).
+    /// TypeError
+    ///     An unknown keyword, one of ``order``, ``constraint``,
+    ///     ``integral``, or a value of the wrong type.
+    #[pyo3(signature = (**overrides))]
+    fn replace(&self, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        Ok(Self {
+            spec: self.spec.replace(overrides)?,
+        })
+    }
+
+    /// The configuration as keyword arguments of :class:`Controller`.
+    ///
+    /// Returns
+    /// -------
+    /// dict
+    ///     ``Controller(**spec.config())`` builds the controller of
+    ///     :meth:`build`; ``rho_e`` is ``'auto'`` when the spec leaves it to
+    ///     famcc-core.
+    fn config<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.spec.kwargs(py)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        self.spec.repr(py, "ControllerSpec")
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let f = module_function(py, "_controller_spec_from_kwargs")?;
+        Ok((f, PyTuple::new(py, [self.spec.kwargs(py)?])?))
+    }
+}
+
+/// Unpickling: the spec of keyword arguments (as `config()` gives them).
+#[pyfunction]
+pub fn _controller_spec_from_kwargs(kwargs: &Bound<'_, PyDict>) -> PyResult<ControllerSpec> {
+    Ok(ControllerSpec {
+        spec: spec_from_kwargs(kwargs)?,
+    })
+}
