@@ -195,6 +195,7 @@ def simulate(
     --------
     >>> from types import SimpleNamespace
     >>> from famcc.plants import second_order
+    >>> from famcc.signals import Constant
     >>> p_only = SimpleNamespace(dt=0.01, order=2, step=lambda e, applied=None: -20.0 * e)
     >>> res = simulate(second_order(), p_only, t_end=1.0, reference=Constant(0.0),
     ...                u_limits=(-2.5, 3.0),
