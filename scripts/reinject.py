@@ -103,7 +103,7 @@ BUGS = (
     Bug(
         "performance_ok",
         "the sweep's performance_ok replaced by True",
-        "python/famcc/sweep.py",
+        "python/famcc/sweep/run.py",
         '        r["performance_ok"] = ok',
         '        r["performance_ok"] = True',
         ("py",),

@@ -290,10 +290,10 @@ def lmcc(
     ``mu`` is the high-gain differentiator's time constant (s), discretized as
     famcc picks for ``dt`` (:meth:`famcc.HighGain.discretization_for`).
     """
-    import famcc
+    from famcc import _core
 
-    stages = [famcc.Linear(k) for _ in range(order - 1)] if order > 1 else [famcc.Linear(k)]
-    return famcc.Controller(
+    stages = [_core.Linear(k) for _ in range(order - 1)] if order > 1 else [_core.Linear(k)]
+    return _core.Controller(
         order,
         dt,
         stages if len(stages) > 1 else stages[0],
@@ -302,7 +302,7 @@ def lmcc(
         settle_time=settle_time,
         k_u=k_u,
         rho_e=None,
-        differentiator=famcc.HighGain.default(
-            order, mu=mu, discretization=famcc.HighGain.discretization_for(order, dt, mu)
+        differentiator=_core.HighGain.default(
+            order, mu=mu, discretization=_core.HighGain.discretization_for(order, dt, mu)
         ),
     )

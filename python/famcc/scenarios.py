@@ -33,11 +33,10 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-import famcc
 from famcc import _core, plants, verdicts
 
 if TYPE_CHECKING:
-    from famcc.simulation import SimResult
+    from famcc.sim import SimResult
 
 __all__ = [
     "MAX_EXTENSIONS",
@@ -127,7 +126,7 @@ class Scenario:
         """T_s + T' (s): the corollary's bound on the settling time without saturation."""
         return self.settle_time + self.t_prime
 
-    def controller(self, dt: float = 1e-3, **overrides: Any) -> famcc.Controller:
+    def controller(self, dt: float = 1e-3, **overrides: Any) -> _core.Controller:
         """A fresh controller for this scenario at sample period ``dt`` (s).
 
         Unless ``differentiator`` is given, the differentiator is the one the
@@ -136,10 +135,10 @@ class Scenario:
         (docs/tuning.md, "Sample rate").
         """
         kw = dict(self.controller_kwargs)
-        kw["differentiator"] = famcc.HighGain.for_rate(kw["order"], dt)
+        kw["differentiator"] = _core.HighGain.for_rate(kw["order"], dt)
         kw.update(overrides)
         order = kw.pop("order")
-        return famcc.Controller(order, dt, **kw)
+        return _core.Controller(order, dt, **kw)
 
     def run(
         self,
@@ -168,7 +167,8 @@ class Scenario:
         saturation keeps returning sooner than ``T'``, the claim stays untested
         and :meth:`verdicts` says so.
         """
-        from famcc.simulation import Sine, simulate
+        from famcc.signals import Sine
+        from famcc.sim import simulate
 
         horizon = self.t_end if t_end is None else t_end
         substeps = substeps_for(dt) if substeps is None else substeps

@@ -4,7 +4,7 @@
 use crate::errors::{config_err, config_err_got, ConfigFault};
 use crate::names::DISCRETIZATION;
 use crate::number::{Num, Text};
-use crate::orders::with_order;
+use crate::orders::{to_array, with_order};
 use famcc_core::config::{check_estimate_limits, check_order};
 use famcc_core::differentiator::{auto_discretization, paper_coefficients, PAPER_MU};
 use famcc_core::{Discretization, Real};
@@ -146,16 +146,6 @@ impl HighGain {
             prefilter: h.prefilter.to_f64_lossless(),
         }
     }
-}
-
-/// `v` as an array of `N` values of `T` (`None` for another length).
-pub fn to_array<T: Real, const N: usize>(v: &[f64]) -> Option<[T; N]> {
-    if v.len() != N {
-        return None;
-    }
-    let mut out = [T::zero(); N];
-    out.iter_mut().zip(v).for_each(|(o, x)| *o = T::from_f64(*x));
-    Some(out)
 }
 
 #[pymethods]

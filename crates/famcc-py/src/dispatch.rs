@@ -3,9 +3,9 @@
 //! macros that run code on whichever it holds.
 
 use crate::diagnostics::Diagnostics;
-use crate::differentiator::to_array;
 use crate::errors::{config_err, kind, step_err, StepFault};
 use crate::names::DType;
+use crate::orders::to_array;
 use crate::spec::Spec;
 use crate::state;
 use famcc_core::config::check_order;

@@ -3,10 +3,10 @@
 
 use crate::args::per_stage;
 use crate::array::map_float_or_array;
-use crate::differentiator::to_array;
 use crate::errors::{config_err, ConfigFault};
 use crate::laws::Law;
 use crate::names::TRANSITION;
+use crate::orders::to_array;
 use crate::orders::with_order;
 use crate::skews::SkewSpec;
 use famcc_core::config::check_order;

@@ -36,6 +36,7 @@ mod diagnostics;
 mod differentiator;
 mod dispatch;
 mod errors;
+mod exception_methods;
 mod functions;
 mod health;
 mod kwargs;
@@ -59,7 +60,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_ORDER", famcc_core::config::MAX_ORDER)?;
     m.add("STATE_FIELDS", PyTuple::new(py, famcc_core::SNAPSHOT_FIELDS)?)?;
     // ConfigError, StepError, the warnings and ArgumentTypeError.
-    errors::install(m)?;
+    exception_methods::install(m)?;
     m.add_class::<laws::Linear>()?;
     m.add_class::<laws::FiniteTime>()?;
     m.add_class::<laws::FixedTime>()?;

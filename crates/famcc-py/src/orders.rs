@@ -1,5 +1,8 @@
 //! Run-time order to const-generic order: the one list of the orders this
-//! binding compiles (famcc-core's `config::MAX_ORDER`).
+//! binding compiles (famcc-core's `config::MAX_ORDER`), and slices to arrays
+//! of that size.
+
+use famcc_core::Real;
 
 /// Evaluates `$body` with the constant `$n` equal to the run-time order
 /// `$order` when it is one of `1..=MAX_ORDER`, otherwise `$otherwise`.
@@ -21,3 +24,13 @@ pub(crate) use with_order;
 
 // The arms above are the orders 1..=MAX_ORDER.
 const _: () = assert!(famcc_core::config::MAX_ORDER == 8);
+
+/// `v` as an array of `N` values of `T` (`None` for another length).
+pub fn to_array<T: Real, const N: usize>(v: &[f64]) -> Option<[T; N]> {
+    if v.len() != N {
+        return None;
+    }
+    let mut out = [T::zero(); N];
+    out.iter_mut().zip(v).for_each(|(o, x)| *o = T::from_f64(*x));
+    Some(out)
+}

@@ -2,9 +2,10 @@
 //! in f64: what `repr`, `config()`, pickling and banks are made from, and
 //! what famcc-core's builder is fed.
 
-use crate::differentiator::{to_array, HighGain};
+use crate::differentiator::HighGain;
 use crate::laws::Law;
 use crate::names::DType;
+use crate::orders::to_array;
 use crate::skews::SkewSpec;
 use famcc_core::{Config, ConfigError, Constraint, Gamma, Latch, Real, Transition};
 

@@ -50,8 +50,9 @@ from famcc.campaigns.dispersion import (
     distribution,
 )
 from famcc.campaigns.noise import NoisySensor, noise_keys, standard_normal
+from famcc.campaigns.plan import Campaign
 from famcc.campaigns.result import CRITERIA, CampaignResult, Case
-from famcc.campaigns.run import STATE_BOUND, Campaign, campaign
+from famcc.campaigns.run import STATE_BOUND, campaign
 from famcc.campaigns.spec import load_spec, run_spec
 from famcc.campaigns.stats import Rate, beta_cdf, beta_ppf, clopper_pearson
 

@@ -15,7 +15,7 @@ import numpy as np
 from famcc.campaigns.chunk import run_chunk
 
 if TYPE_CHECKING:
-    from famcc.campaigns.run import Campaign
+    from famcc.campaigns.plan import Campaign
 
 
 def _is_dask_client(obj: Any) -> bool:
@@ -34,7 +34,7 @@ def _dask_client(address: str) -> Any:
 
 def _progress(progress: Any, total: int, title: str) -> Any:
     if progress is True:
-        from famcc.reporting import Progress
+        from famcc.progress import Progress
 
         return Progress(total, title)
     if progress in (False, None):

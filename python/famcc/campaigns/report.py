@@ -10,8 +10,7 @@ import numpy as np
 
 from famcc.campaigns.controller import _controller
 from famcc.campaigns.dispersion import Fixed
-from famcc.campaigns.result import _fmt
-from famcc.campaigns.stats import _pct, clopper_pearson
+from famcc.campaigns.stats import _fmt, _pct, clopper_pearson
 from famcc.plants.base import is_real as _is_number
 from famcc.verdicts import STARTUP
 

@@ -19,7 +19,7 @@ from famcc.signals import Constant, Sine
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from famcc.campaigns.run import Campaign
+    from famcc.campaigns.plan import Campaign
 
 #: The criteria every case is judged on, in the order reports list them.
 CRITERIA = ("settled", "bounded", "nominal", "unsaturated")
@@ -370,10 +370,6 @@ class CampaignResult:
         from famcc.campaigns.report import write
 
         return write(self, out, figures, worst)
-
-
-def _fmt(v: Any, none: str = "-") -> str:
-    return none if v is None or (isinstance(v, float) and not math.isfinite(v)) else f"{v:.4g}"
 
 
 def _plain(v: Any) -> Any:

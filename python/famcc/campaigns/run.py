@@ -1,21 +1,17 @@
-"""The campaign itself: the spec, the draw, and the executors (local, futures, Dask)."""
+"""The campaign itself: resolving the arguments, the draw, and the run (local, futures, Dask)."""
 
 from __future__ import annotations
 
-import hashlib
-import json
-import zlib
-from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from famcc.campaigns.chunk import _Chunk
 from famcc.campaigns.controller import _corollary_time, _preset_accuracy
-from famcc.campaigns.dispersion import Distribution, _finite, distribution
+from famcc.campaigns.dispersion import _finite, distribution
 from famcc.campaigns.executors import _execute
+from famcc.campaigns.plan import Campaign, _draw
 from famcc.campaigns.result import CRITERIA, CampaignResult
 from famcc.plants import Family, family
 from famcc.plants.base import is_real as _is_number
@@ -26,118 +22,6 @@ STATE_BOUND = 1e6
 
 _REFERENCE_KEYS = {"sine": ("amplitude", "omega", "phase"), "constant": ("value",)}
 _CONTROLLER_KEYS = ("eps", "k_u", "settle_time", "k0", "rho_e")
-
-
-@dataclass
-class Campaign:
-    """A campaign's configuration (what :func:`campaign` runs; rebuilds any case).
-
-    Attributes are the arguments of :func:`campaign`, resolved: the family, the
-    controller's configuration, the dispersions, the per-case values drawn from
-    them (``values``, one array per dispersed key), and the numbers.
-    """
-
-    family: Family
-    controller: dict[str, Any]
-    cases: int
-    t_end: float
-    dt: float
-    steps: int
-    substeps: int
-    u_limits: tuple[float, float] | None
-    eps: float
-    settle_by: Any
-    reference: Any
-    noise: float
-    dispersion: dict[str, Distribution]
-    seed: int
-    chunk_size: int
-    state_bound: float
-    require: tuple[str, ...]
-    confidence: float
-    name: str
-    values: dict[str, np.ndarray] = field(repr=False)
-
-    @property
-    def reference_kind(self) -> str:
-        """``"sine"`` or ``"constant"``."""
-        return "sine" if isinstance(self.reference, Sine) else "constant"
-
-    def fingerprint(self) -> str:
-        """A hash of everything that decides the per-case results (for resuming)."""
-        import famcc
-
-        cfg = {k: repr(v) for k, v in self.controller.items()}
-        doc = {
-            "famcc": famcc.__version__,
-            "family": self.family.name,
-            "order": self.family.order,
-            "params": self.family.params,
-            "x0": self.family.x0.tolist(),
-            "controller": cfg,
-            "cases": self.cases,
-            "dt": self.dt,
-            "steps": self.steps,
-            "substeps": self.substeps,
-            "u_limits": self.u_limits,
-            "eps": self.eps,
-            "reference": repr(self.reference),
-            "noise": self.noise,
-            "seed": self.seed,
-            "chunk_size": self.chunk_size,
-            "state_bound": self.state_bound,
-            "dispersion": {k: d.describe() for k, d in self.dispersion.items()},
-        }
-        text = json.dumps(doc, sort_keys=True)
-        return hashlib.sha256(text.encode()).hexdigest()[:16]
-
-    def chunks(self) -> Iterator[tuple[int, int]]:
-        """``(start, stop)`` of every chunk."""
-        for a in range(0, self.cases, self.chunk_size):
-            yield a, min(a + self.chunk_size, self.cases)
-
-    def chunk(self, start: int, stop: int) -> _Chunk:
-        """The work of cases ``start .. stop - 1``."""
-        vals = {k: np.ascontiguousarray(v[start:stop]) for k, v in self.values.items()}
-        if self.noise > 0 and "noise.sigma" not in vals:
-            vals["noise.sigma"] = np.full(stop - start, self.noise)
-        ref = self.reference
-        rpar = (
-            {"amplitude": ref.amplitude, "omega": ref.omega, "phase": ref.phase}
-            if isinstance(ref, Sine)
-            else {"value": ref.value}
-        )
-        return _Chunk(
-            start,
-            stop,
-            self.family,
-            self.controller,
-            vals,
-            self.dt,
-            self.steps,
-            self.substeps,
-            self.u_limits,
-            self.eps,
-            self.reference_kind,
-            rpar,
-            self.state_bound,
-            self.seed,
-        )
-
-
-def _draw(dispersion: Mapping[str, Distribution], seed: int, cases: int) -> dict[str, np.ndarray]:
-    """Per-key draws: key ``name`` uses the generator seeded by ``(seed, crc32(name))``.
-
-    Each key's draws are independent of the other keys and of their order, and
-    the first ``n`` cases are the same for every ``cases >= n``.
-    """
-    out = {}
-    for key, dist in dispersion.items():
-        rng = np.random.default_rng([seed, zlib.crc32(key.encode())])
-        out[key] = np.asarray(dist.sample(rng, cases), dtype=np.float64)
-        if out[key].shape != (cases,) or not np.all(np.isfinite(out[key])):
-            raise ValueError(f"the dispersion of {key!r} gave non-finite or misshaped draws")
-    return out
 
 
 def _resolve_family(fam: Any, variant: str | None) -> Family:

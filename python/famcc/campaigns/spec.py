@@ -12,7 +12,7 @@ from famcc.signals import Constant, Sine
 
 
 def _law(spec: Any, kind: str) -> Any:
-    import famcc
+    from famcc import _core
 
     if not isinstance(spec, Mapping) or kind not in spec:
         raise ValueError(
@@ -26,11 +26,11 @@ def _law(spec: Any, kind: str) -> Any:
     }[kind]
     if name not in allowed:
         raise ValueError(f"{kind} must be one of {', '.join(allowed)}, got {name!r}")
-    return getattr(famcc, name)(**rest)
+    return getattr(_core, name)(**rest)
 
 
 def _controller_from_spec(spec: Mapping[str, Any], dt: float) -> Any:
-    import famcc
+    from famcc import _core, scenarios
 
     kw = dict(spec)
     scenario = kw.pop("scenario", None)
@@ -42,15 +42,15 @@ def _controller_from_spec(spec: Mapping[str, Any], dt: float) -> Any:
         sk = kw["skew"]
         kw["skew"] = [_law(f, "skew") for f in sk] if isinstance(sk, list) else _law(sk, "skew")
     if isinstance(kw.get("differentiator"), Mapping):
-        kw["differentiator"] = famcc.HighGain(**kw["differentiator"])
+        kw["differentiator"] = _core.HighGain(**kw["differentiator"])
     if "eps" in kw and isinstance(kw["eps"], list):
         kw["eps"] = tuple(kw["eps"])
     if scenario is not None:
-        return famcc.scenarios.paper(scenario, variant).controller(dt, **kw)
+        return scenarios.paper(scenario, variant).controller(dt, **kw)
     if "order" not in kw:
         raise ValueError("[controller] needs scenario = NAME or order and the design's settings")
     order = kw.pop("order")
-    return famcc.Controller(order, dt, **kw)
+    return _core.Controller(order, dt, **kw)
 
 
 def load_spec(path: str | Path) -> dict[str, Any]:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -149,6 +150,11 @@ class Rate:
             f"{self.name}: {self.held:,} of {self.tested:,} ({_pct(self.rate)}, "
             f"{100 * self.confidence:g} % CI {_pct(self.lo, False)}-{_pct(self.hi)}){tail}"
         )
+
+
+def _fmt(v: Any, none: str = "-") -> str:
+    """A number to 4 significant digits; ``none`` for None and non-finite values."""
+    return none if v is None or (isinstance(v, float) and not math.isfinite(v)) else f"{v:.4g}"
 
 
 def _pct(v: float, unit: bool = True) -> str:

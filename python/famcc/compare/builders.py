@@ -29,7 +29,7 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
     differentiator too fast for a 200 Hz loop) are silenced here: the comparison
     evaluates every candidate as tuned, and the measured runs show the cost.
     """
-    import famcc
+    from famcc import _core
     from famcc.peers import ADRCPeer, PIDPeer, lmcc
 
     n = int(p["order"])
@@ -55,8 +55,8 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
         raise ValueError(f"kind must be one of {', '.join(_KINDS)}, got {kind!r}")
     # the discretization famcc picks for this mu at this dt (the first-order
     # hold once mu < 10 dt up to order 3, Tustin from order 4 on)
-    hg = famcc.HighGain.default(
-        n, mu=p["mu"], discretization=famcc.HighGain.discretization_for(n, dt, p["mu"])
+    hg = _core.HighGain.default(
+        n, mu=p["mu"], discretization=_core.HighGain.discretization_for(n, dt, p["mu"])
     )
     # the envelope latch of the authors' code, as `famcc reproduce` (variant "code") uses
     common = {
@@ -67,15 +67,15 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
     }
     k, eps = p["k"], p["eps"]
     if p["family"] == "finite-time":
-        return famcc.Controller(
-            n, dt, famcc.FiniteTime(k=k, p=0.5), constraint="lateral", eps=eps, **common
+        return _core.Controller(
+            n, dt, _core.FiniteTime(k=k, p=0.5), constraint="lateral", eps=eps, **common
         )
     if p["family"] == "variable-exponent":  # example 2, scaled: eps_z = eps, LoMC 1.5 eps
-        return famcc.Controller(
+        return _core.Controller(
             n,
             dt,
-            famcc.VariableExponent(1.5 * k, 0.5, 2.0, 3.0),
-            skew=famcc.Smooth(2.25 * eps, eps),
+            _core.VariableExponent(1.5 * k, 0.5, 2.0, 3.0),
+            skew=_core.Smooth(2.25 * eps, eps),
             constraint="longitudinal",
             eps=1.5 * eps,
             **common,
@@ -83,9 +83,9 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
     # rfc (example 3, scaled by k): stage i has FixedTime(2^i k, 0.5, 2^(i-1) k, 2) + NSMD
     laws, skews = [], []
     for i in range(n - 1):
-        laws.append(famcc.FixedTime(2.0**i * k, 0.5, 2.0 ** (i - 1) * k, 2.0))
-        skews.append(famcc.Nonsingular(eps * 30.0**i, eps * 2.0**i, 0.1 * 10.0**i))
-    return famcc.Controller(
+        laws.append(_core.FixedTime(2.0**i * k, 0.5, 2.0 ** (i - 1) * k, 2.0))
+        skews.append(_core.Nonsingular(eps * 30.0**i, eps * 2.0**i, 0.1 * 10.0**i))
+    return _core.Controller(
         n,
         dt,
         laws,

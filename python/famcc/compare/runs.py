@@ -33,7 +33,7 @@ def run(
     (bounds expanded with headroom) is silenced: the comparison measures that cost
     instead (see :func:`build`).
     """
-    import famcc
+    from famcc import signals, sim
     from famcc.joints import simulate_joints
 
     cond = condition_of(condition)
@@ -43,7 +43,11 @@ def run(
     horizon = case.t_end if t_end is None else t_end
     substeps = max(1, math.ceil(dt / RK4_STEP - 1e-9))
     noise = cond["noise"] or None
-    refs = [famcc.Sine()] if case.reference is None else [famcc.Constant(v) for v in case.reference]
+    refs = (
+        [signals.Sine()]
+        if case.reference is None
+        else [signals.Constant(v) for v in case.reference]
+    )
     e0 = max(abs(float(plant.x0[case.order * j]) - refs[j](0.0, 0)) for j in range(case.joints))
     bound = 10.0 * max(e0, 1.0)
     ctrls = [build(kind, params[j], dt, limits[j]) for j in range(case.joints)]
@@ -59,7 +63,7 @@ def run(
             seed=seed,
             diverge_at=bound,
         )
-    res = famcc.simulate(
+    res = sim.simulate(
         _Bare(plant),
         ctrls[0],
         horizon,

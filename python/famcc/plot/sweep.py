@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -13,8 +13,13 @@ from matplotlib.figure import Figure
 from famcc.plot.axes import _DPI
 
 
-def sweep_figure(rows: Sequence[dict[str, Any]], title: str = "") -> Figure:
+def sweep_figure(
+    rows: Sequence[dict[str, Any]], bounds: Mapping[str, float | None], title: str = ""
+) -> Figure:
     """Settling time and the margin ``1 - max |xi~|`` against the sample rate.
+
+    ``bounds`` maps each scenario to its settling bound ``T_s + T'`` (s), or None
+    where the bound varies per run (the scenarios that saturate).
 
     ``rows`` are :mod:`famcc.sweep` records (keys ``scenario``, ``rate_hz``,
     ``discretization``, ``limited``, ``settling_time``, ``max_abs_xi``, ``ok``,
@@ -27,8 +32,6 @@ def sweep_figure(rows: Sequence[dict[str, Any]], title: str = "") -> Figure:
     from matplotlib.lines import Line2D
     from matplotlib.ticker import NullLocator
     from matplotlib.transforms import blended_transform_factory
-
-    from famcc import scenarios
 
     names = list(dict.fromkeys(r["scenario"] for r in rows))
     discs = list(dict.fromkeys(r["discretization"] for r in rows))
@@ -90,10 +93,10 @@ def sweep_figure(rows: Sequence[dict[str, Any]], title: str = "") -> Figure:
                         ax_t.plot([r["rate_hz"]], [t_s], "x", color="black", ms=8, mew=1.6)
                     else:
                         fails_at_top.add(r["rate_hz"])
-        sc = scenarios.paper(name, rows[0].get("variant", "code"))
-        if not sc.saturated:
+        bound = bounds.get(name)
+        if bound is not None:
             ax_t.axhline(
-                sc.bound, color="black", ls="-.", lw=1.0, label=f"bound $T_s+T'$ = {sc.bound:.3g} s"
+                bound, color="black", ls="-.", lw=1.0, label=f"bound $T_s+T'$ = {bound:.3g} s"
             )
             ax_t.set_title(f"{name}", fontsize=10)
         else:

@@ -75,7 +75,7 @@ class _View:
 
 def _laws_from(feedback: Any, skew: Any, order: int) -> list[Any]:
     """The callables ``h_m`` of the stages (None where the binding cannot build one)."""
-    import famcc
+    from famcc import _core
 
     n = max(order - 1, 0)
     fbs = list(feedback) if isinstance(feedback, (list, tuple)) else [feedback] * n
@@ -83,7 +83,7 @@ def _laws_from(feedback: Any, skew: Any, order: int) -> list[Any]:
     laws: list[Any] = []
     for fb, sk in zip(fbs, sks):
         try:
-            laws.append(famcc.skewed(fb, sk))
+            laws.append(_core.skewed(fb, sk))
         except (TypeError, ValueError):  # a law the binding does not know: draw no curve
             laws.append(None)
     return laws

@@ -27,9 +27,9 @@ True
 
 from __future__ import annotations
 
+from famcc.progress import Progress
 from famcc.reporting.paper import VARIANT_DIFFERENCES as VARIANT_DIFFERENCES
 from famcc.reporting.paper import reproduce, write_report
-from famcc.reporting.progress import Progress
 from famcc.reporting.records import diverged as diverged
 from famcc.reporting.records import measure, run_record
 from famcc.reporting.runs import report

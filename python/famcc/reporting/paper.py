@@ -8,8 +8,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from famcc.progress import Progress
 from famcc.reporting.notes import _accuracy_text, _episodes_text, _missing_notes, _saturation_note
-from famcc.reporting.progress import Progress
 from famcc.reporting.records import _num, diverged, measure
 from famcc.reporting.tables import _t
 from famcc.reporting.writer import _save_figure, _write
@@ -144,7 +144,7 @@ def write_report(
     The paper's report is the general one (:func:`report`'s writer) with the
     paper's columns, notes and the command that regenerates it.
     """
-    import famcc
+    from famcc import _core
 
     horizon = meta.get("t_end") or 10.0
     dt = float(meta.get("dt") or 1e-3)
@@ -152,7 +152,7 @@ def write_report(
         f"Variant `{meta.get('variant')}`, sample period dt = {dt:g} s "
         f"({1.0 / dt:g} Hz), horizon {horizon:g} s (saturated runs are extended until their "
         "recovery claims can fall due, see the table), famcc "
-        f"{famcc.__version__}"
+        f"{_core.__version__}"
         + (f", {meta['runtime_s']:.1f} s wall time" if meta.get("runtime_s") else "")
         + ". The same numbers are in [`summary.json`](summary.json); the figures are explained "
         "in `docs/figures.md`."

@@ -15,7 +15,7 @@ from famcc.reporting.writer import _save_figure, _write
 
 def _labelled(results: Any) -> list[tuple[str, Any]]:
     """``[(label, SimResult), ...]`` from a result, a list, labelled pairs or a dict."""
-    from famcc.simulation import SimResult
+    from famcc.sim import SimResult
 
     if isinstance(results, SimResult):
         results = [results]
@@ -113,7 +113,7 @@ def report(
     >>> "| k_u = 5 |" in text and "## Claims" in text
     True
     """
-    import famcc
+    from famcc import _core
 
     runs = _labelled(results)
     if settle_time is not None and eps is None:
@@ -140,7 +140,7 @@ def report(
     else:
         wanted = f"|z1| < {eps:g} for good from {settle_time:g} s on"
     intro = (
-        f"{len(records)} run(s); requirements: {wanted}; famcc {famcc.__version__}"
+        f"{len(records)} run(s); requirements: {wanted}; famcc {_core.__version__}"
         ". The same numbers are in [`summary.json`](summary.json); the figures are explained "
         "in `docs/figures.md`, the terms in `docs/glossary.md`."
     )

@@ -33,14 +33,14 @@ def _write(
     columns_extra: str = "",
 ) -> tuple[Path, Path]:
     """The one writer of ``report.md`` and ``summary.json`` (reproduce and report)."""
-    import famcc
+    from famcc import _core
 
     out.mkdir(parents=True, exist_ok=True)
     failed = sum(r["verdict_counts"]["failed"] for r in records)
     untested = sum(r["verdict_counts"]["untested"] for r in records)
     total = sum(r["verdict_counts"]["total"] for r in records)
     summary = {
-        "famcc_version": famcc.__version__,
+        "famcc_version": _core.__version__,
         **summary_meta,
         "guarantees": {
             k: sum(r["verdict_counts"][k] for r in records)

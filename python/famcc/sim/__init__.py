@@ -7,7 +7,8 @@ module                 what it owns
 :mod:`.simulate`       :func:`simulate`: one plant, one controller
 :mod:`.joints`         :func:`simulate_joints`: one controller per joint
 :mod:`.post`           the true error vector and ``-F/G`` after the loop
-:mod:`.result`         :class:`SimResult`: the record and its views
+:mod:`.result`         :class:`SimResult`: the record and its metrics
+:mod:`.views`          its text, HTML, PNG and data frame
 =====================  ==================================================
 """
 

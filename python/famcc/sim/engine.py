@@ -9,7 +9,7 @@ through :func:`start` and :meth:`Engine.block`. The semantics are famcc-sim's
 previous sample; ``u_k = clip(v_k)`` plus the disturbance is held while the
 plant is integrated with ``substeps`` RK4 steps; a lane stops at a sample with
 ``|e| > diverge_at``, a non-finite output, or after an integration that left
-the state finite and inside ``state_bound``.
+the state non-finite or outside ``state_bound``.
 """
 
 from __future__ import annotations

@@ -92,7 +92,7 @@ class Design:
 
     def controller_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :class:`famcc.Controller` for this design."""
-        import famcc
+        from famcc import _core
 
         p, r = self.parameters, self.requirements
         n = r["order"]
@@ -100,7 +100,7 @@ class Design:
         kw: dict[str, Any] = {
             "order": n,
             "dt": r["dt"],
-            "feedback": [famcc.Linear(p["lambda"])] * stages if stages else None,
+            "feedback": [_core.Linear(p["lambda"])] * stages if stages else None,
             "constraint": "longitudinal",
             "eps": p["eps_s"],
             "settle_time": p["settle_time"],
@@ -109,7 +109,7 @@ class Design:
             "rho_e": p["rho_e"],
             "gamma": "log",
             "differentiator": (
-                famcc.HighGain(
+                _core.HighGain(
                     p["mu"],
                     list(p["a"]),
                     discretization=p["discretization"],
@@ -141,13 +141,13 @@ class Design:
             which is the way taken for ``order``, ``constraint`` or
             ``integral`` overrides and when there is no spec.
         """
-        import famcc
+        from famcc import _core
 
         if self.spec is not None and not _SHAPE_KEYS.intersection(overrides):
             return self.spec.replace(**overrides).build()
         kw = self.controller_kwargs()
         kw.update(overrides)
-        return famcc.Controller(kw.pop("order"), kw.pop("dt"), **kw)
+        return _core.Controller(kw.pop("order"), kw.pop("dt"), **kw)
 
     def __str__(self) -> str:
         p, r = self.parameters, self.requirements

@@ -147,9 +147,9 @@ def tune(
     """
     import numpy as np
 
-    import famcc
-    from famcc.reporting import Progress
-    from famcc.simulation import Constant
+    from famcc import _core, sim
+    from famcc.progress import Progress
+    from famcc.signals import Constant
 
     lo, hi = (float(v) for v in u_limits)
     horizon = float(t_end) if t_end is not None else 2.0 * float(settle_time) + 1.0
@@ -168,10 +168,10 @@ def tune(
                 ctrl = _Noisy(ctrl, noise_std, seed)
             try:
                 if measure:  # the first run measures G and -F/G along the trajectory
-                    return famcc.simulate(
+                    return sim.simulate(
                         plant, ctrl, horizon, reference=reference, u_limits=(lo, hi)
                     )
-                return famcc.simulate(
+                return sim.simulate(
                     lean, ctrl, horizon, reference=lean_ref, u_limits=(lo, hi), substeps=substeps
                 )
             except (FloatingPointError, ValueError, OverflowError):
@@ -189,7 +189,7 @@ def tune(
             try:
                 g0, _ = plant.gain_and_drift(0.0, np.asarray(plant.x0, dtype=float))
             except NotImplementedError as exc:
-                raise famcc.ConfigError(
+                raise _core.ConfigError(
                     f"tune needs gain= and hold_input= for a plant without gain_and_drift ({exc})",
                     parameter="gain" if g is None else "hold_input",
                     rule="must be given for a plant without gain_and_drift",

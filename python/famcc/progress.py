@@ -1,4 +1,7 @@
-"""The text progress bar of ``famcc reproduce``, ``famcc compare`` and the campaigns."""
+"""The one text progress bar (``famcc.reporting.Progress``).
+
+Used by ``famcc reproduce``, ``famcc compare``, ``famcc.tune`` and the campaigns.
+"""
 
 from __future__ import annotations
 
