@@ -177,4 +177,20 @@ mod tests {
         let high = l.apply(4.0);
         assert!(!high.integrates(-1.0, true) && high.integrates(1.0, true));
     }
+
+    #[test]
+    fn integrates_unless_pushing_beyond_either_limit() {
+        // Beyond the lower limit, e > 0 lowers v further: no integration; e < 0
+        // and e = 0 bring it back or hold it: integrate. Mirrored above.
+        let l = limits(Some((-1.0, 2.0)), None, None);
+        let low = l.apply(-3.0);
+        assert_eq!(low.beyond, -1);
+        assert!(!low.integrates(1.0, true));
+        assert!(low.integrates(-1.0, true) && low.integrates(0.0, true));
+        let high = l.apply(3.0);
+        assert_eq!(high.beyond, 1);
+        assert!(!high.integrates(-1.0, true));
+        assert!(high.integrates(1.0, true) && high.integrates(0.0, true));
+        assert!(!low.integrates(-1.0, false) && !high.integrates(1.0, false));
+    }
 }
