@@ -88,6 +88,7 @@ _TYPES = {
     "tuple[int, ...]": (tuple,),
     "tuple[float, ...] | None": (tuple, type(None)),
     "float | None": (float, type(None)),
+    "ControllerSpec": (_core.ControllerSpec,),
     "Diagnostics": (_core.Diagnostics,),
     "_Transition": (str,),
     "_Discretization": (str,),

@@ -1050,6 +1050,12 @@ class Controller:
         action the integral `I` first, then the plant's `z1..zn`).
         """
     @property
+    def spec(self) -> ControllerSpec:
+        """The configuration (a :class:`ControllerSpec`): what the controller
+        guarantees (``spec.output_accuracy()``, ``spec.corollary_time(z1_0)``)
+        and copies of it (``spec.replace(...).build()``).
+        """
+    @property
     def integral(self) -> bool:
         """True with integral action."""
     def step(self, e: float, applied: float | None = None) -> float:
@@ -1376,6 +1382,76 @@ class ControllerSpec:
         TypeError
             An unknown keyword, one of ``order``, ``constraint``,
             ``integral``, or a value of the wrong type.
+        """
+    @staticmethod
+    def from_config(config: dict[str, Any]) -> ControllerSpec:
+        """The spec of a configuration given as keyword arguments.
+
+        Parameters
+        ----------
+        config : dict
+            Keyword arguments of :class:`Controller` with ``order`` and ``dt``,
+            as :meth:`Controller.config` gives them.
+
+        Returns
+        -------
+        ControllerSpec
+            ``ControllerSpec.from_config(c.config()).build()`` equals ``c``.
+
+        Raises
+        ------
+        famcc.ConfigError, TypeError
+            As the :class:`Controller` constructor.
+        """
+    def output_accuracy(self) -> float | None:
+        """The output accuracy ``eps_z`` the configuration presets for ``|z1|``.
+
+        The constraint's half-width at order 1 (``s = z1``) and for LaMC at
+        order 2 (``eps_x = eps_z``, Corollary 1); otherwise a skewed first
+        stage's ``eps_z`` (Corollaries 2 and 3); with integral action none.
+
+        Returns
+        -------
+        float or None
+            None when the configuration presets no accuracy of the output.
+
+        Raises
+        ------
+        famcc.ConfigError
+            A configuration famcc-core rejects.
+
+        Examples
+        --------
+        >>> import famcc
+        >>> famcc.scenarios.paper("finite-time").controller().spec.output_accuracy()
+        0.1
+        """
+    def corollary_time(
+        self, z1_0: float | Sequence[float] | NDArray[np.float64]
+    ) -> float | NDArray[np.float64] | None:
+        """The reaching time ``T'`` of the paper's corollaries, s.
+
+        Every stage ``FixedTime``: ``T_fr'`` (Corollary 3); one
+        ``VariableExponent`` stage: ``T_fxe'`` (Corollary 2); one
+        ``FiniteTime`` stage: ``T_fn'`` (Corollary 1), which depends on
+        ``|z1(0)|``. The bound on reaching ``|z1| < eps_z`` is ``T_s + T'``.
+
+        Parameters
+        ----------
+        z1_0 : float or array_like
+            The initial error ``z1(0)`` (one per case).
+
+        Returns
+        -------
+        float, numpy.ndarray or None
+            ``T'`` in the shape of ``z1_0``; None when the laws have no
+            corollary bound.
+
+        Examples
+        --------
+        >>> import famcc
+        >>> famcc.scenarios.paper("finite-time").controller().spec.corollary_time(-1.0)
+        2.0
         """
     def config(self) -> dict[str, Any]:
         """The configuration as keyword arguments of :class:`Controller`.

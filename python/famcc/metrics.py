@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core
 from famcc.plants.base import is_real
 
 __all__ = [
@@ -70,20 +71,21 @@ def check_eps(eps: Any) -> float:
 def preset_accuracy(config: Mapping[str, Any] | None) -> float | None:
     """The output accuracy ``eps_z`` a controller configuration presets, or None.
 
-    The controller's ``eps`` bounds the constrained offset, which is ``|z1|``
-    itself only in two cases: LaMC at order 2 (``eps_x = eps_z``, Corollary 1)
-    and order 1 (``s = z1``). With a skewed first stage (SSMD or NSMD) the
-    first stage's ``eps_z`` is the output accuracy (Corollaries 2 and 3).
-    Otherwise the configuration presets no accuracy of ``z1``.
+    famcc-core's rule (``Config::output_accuracy``, through
+    :meth:`famcc.ControllerSpec.output_accuracy`): the controller's ``eps``
+    bounds the constrained offset, which is ``|z1|`` itself only at order 1
+    (``s = z1``) and for LaMC at order 2 (``eps_x = eps_z``, Corollary 1);
+    otherwise a skewed first stage (SSMD or NSMD) presets its ``eps_z``
+    (Corollaries 2 and 3). With integral action, or for a configuration that
+    is not a famcc controller's, None.
     """
-    if not config:
+    if not config or "order" not in config or "dt" not in config:
         return None
-    order, kind = config.get("order"), config.get("constraint")
-    if order == 1 or (order == 2 and kind == "lateral"):
-        return as_float(config.get("eps"))
-    skews = config.get("skew")
-    first = skews[0] if isinstance(skews, (list, tuple)) and skews else skews
-    return as_float(getattr(first, "eps_z", None))
+    try:
+        spec = _core.ControllerSpec.from_config(dict(config))
+        return spec.output_accuracy()
+    except (_core.ConfigError, TypeError, ValueError):
+        return None  # not a configuration famcc-core reads: it presets nothing
 
 
 def z1(r: Run) -> np.ndarray:

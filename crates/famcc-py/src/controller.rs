@@ -3,7 +3,7 @@
 //! defaults are famcc-core's (the signature's defaults name them).
 
 use crate::args::{Args, DiffArg, RhoArg, AUTO};
-use crate::controller_spec::module_function;
+use crate::controller_spec::{module_function, ControllerSpec};
 use crate::diagnostics::Diagnostics;
 use crate::dispatch::Core;
 use crate::errors::{kind, step_err, ConfigFault, StepFault};
@@ -262,6 +262,16 @@ impl PyController {
     ///     ``famcc.DesignWarning`` at construction); empty when none.
     fn lint(&self) -> Vec<String> {
         self.core.lint()
+    }
+
+    /// The configuration (a :class:`ControllerSpec`): what the controller
+    /// guarantees (``spec.output_accuracy()``, ``spec.corollary_time(z1_0)``)
+    /// and copies of it (``spec.replace(...).build()``).
+    #[getter]
+    fn spec(&self) -> ControllerSpec {
+        ControllerSpec {
+            spec: self.spec.clone(),
+        }
     }
 
     /// True with integral action.

@@ -4,11 +4,12 @@
 //! `Controller.replace` copies. Also the construction of a
 //! [`PyController`] from a spec, with the constructor's warnings.
 
+use crate::array::map_float_or_array;
 use crate::controller::PyController;
 use crate::dispatch::Core;
 use crate::errors::config_err;
 use crate::health::design_warning;
-use crate::names::DTYPE;
+use crate::names::{DType, DTYPE};
 use crate::replace::spec_from_kwargs;
 use crate::spec::{RhoE, Spec};
 use pyo3::prelude::*;
@@ -156,6 +157,90 @@ impl ControllerSpec {
         })
     }
 
+    /// The spec of a configuration given as keyword arguments.
+    ///
+    /// Parameters
+    /// ----------
+    /// config : dict
+    ///     Keyword arguments of :class:`Controller` with ``order`` and ``dt``,
+    ///     as :meth:`Controller.config` gives them.
+    ///
+    /// Returns
+    /// -------
+    /// ControllerSpec
+    ///     ``ControllerSpec.from_config(c.config()).build()`` equals ``c``.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError, TypeError
+    ///     As the :class:`Controller` constructor.
+    #[staticmethod]
+    fn from_config(config: &Bound<'_, PyDict>) -> PyResult<Self> {
+        Ok(Self {
+            spec: spec_from_kwargs(config)?,
+        })
+    }
+
+    /// The output accuracy ``eps_z`` the configuration presets for ``|z1|``.
+    ///
+    /// The constraint's half-width at order 1 (``s = z1``) and for LaMC at
+    /// order 2 (``eps_x = eps_z``, Corollary 1); otherwise a skewed first
+    /// stage's ``eps_z`` (Corollaries 2 and 3); with integral action none.
+    ///
+    /// Returns
+    /// -------
+    /// float or None
+    ///     None when the configuration presets no accuracy of the output.
+    ///
+    /// Raises
+    /// ------
+    /// famcc.ConfigError
+    ///     A configuration famcc-core rejects.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> famcc.scenarios.paper("finite-time").controller().spec.output_accuracy()
+    /// 0.1
+    fn output_accuracy(&self) -> PyResult<Option<f64>> {
+        Ok(self.exact()?.output_accuracy())
+    }
+
+    /// The reaching time ``T'`` of the paper's corollaries, s.
+    ///
+    /// Every stage ``FixedTime``: ``T_fr'`` (Corollary 3); one
+    /// ``VariableExponent`` stage: ``T_fxe'`` (Corollary 2); one
+    /// ``FiniteTime`` stage: ``T_fn'`` (Corollary 1), which depends on
+    /// ``|z1(0)|``. The bound on reaching ``|z1| < eps_z`` is ``T_s + T'``.
+    ///
+    /// Parameters
+    /// ----------
+    /// z1_0 : float or array_like
+    ///     The initial error ``z1(0)`` (one per case).
+    ///
+    /// Returns
+    /// -------
+    /// float, numpy.ndarray or None
+    ///     ``T'`` in the shape of ``z1_0``; None when the laws have no
+    ///     corollary bound.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import famcc
+    /// >>> famcc.scenarios.paper("finite-time").controller().spec.corollary_time(-1.0)
+    /// 2.0
+    fn corollary_time<'py>(
+        &self,
+        py: Python<'py>,
+        z1_0: &Bound<'py, PyAny>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let core = self.exact()?;
+        if core.corollary_time(0.0).is_none() {
+            return Ok(None);
+        }
+        map_float_or_array(py, z1_0, |z| core.corollary_time(z).unwrap_or(f64::NAN)).map(Some)
+    }
+
     /// The configuration as keyword arguments of :class:`Controller`.
     ///
     /// Returns
@@ -175,6 +260,16 @@ impl ControllerSpec {
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
         let f = module_function(py, "_controller_spec_from_kwargs")?;
         Ok((f, PyTuple::new(py, [self.spec.kwargs(py)?])?))
+    }
+}
+
+impl ControllerSpec {
+    /// The configuration's controller in f64: the guarantees in the
+    /// configuration's own numbers, whatever its float type.
+    fn exact(&self) -> PyResult<Core> {
+        let mut spec = self.spec.clone();
+        spec.dtype = DType::F64;
+        Core::build(&spec).map_err(config_err)
     }
 }
 

@@ -84,6 +84,18 @@ fn check_range<T: Real>(e: f64, ec: T, applied: Option<f64>, ac: Option<T>) -> R
 }
 
 impl Core {
+    /// The output accuracy the configuration presets (famcc-core's
+    /// `Config::output_accuracy`).
+    pub fn output_accuracy(&self) -> Option<f64> {
+        with_core!(self, c => c.config().output_accuracy().map(|x| x.to_f64_lossless()))
+    }
+
+    /// The corollaries' reaching time `T'` for the initial error `z1_0`
+    /// (famcc-core's `Config::corollary_time`).
+    pub fn corollary_time(&self, z1_0: f64) -> Option<f64> {
+        with_core!(self, c => c.config().corollary_time(Real::from_f64(z1_0)).map(|x| x.to_f64_lossless()))
+    }
+
     /// The flexible-boundary margin in effect.
     pub fn rho_e(&self) -> Option<f64> {
         with_core!(self, c => c.config().rho_e().map(|x| x.to_f64_lossless()))

@@ -29,7 +29,7 @@ class _Chunk:
     start: int
     stop: int
     family: Family
-    controller: dict[str, Any]
+    controller: _core.ControllerSpec
     values: dict[str, np.ndarray]
     dt: float
     steps: int

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core
 from famcc.campaigns.chunk import _Chunk
 from famcc.campaigns.dispersion import Distribution
 from famcc.plants import Family
@@ -46,6 +47,17 @@ class Campaign:
     confidence: float
     name: str
     values: dict[str, np.ndarray] = field(repr=False)
+    #: The controller's configuration as famcc-core's spec, from which every chunk
+    #: builds its controllers (given: the campaign's own controller's; else parsed
+    #: once from ``controller``).
+    controller_spec: _core.ControllerSpec | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def spec(self) -> _core.ControllerSpec:
+        """The controller's configuration, parsed (:attr:`controller_spec`)."""
+        if self.controller_spec is None:
+            self.controller_spec = _core.ControllerSpec.from_config(dict(self.controller))
+        return self.controller_spec
 
     @property
     def reference_kind(self) -> str:
@@ -54,8 +66,6 @@ class Campaign:
 
     def fingerprint(self) -> str:
         """A hash of everything that decides the per-case results (for resuming)."""
-        from famcc import _core
-
         cfg = {k: repr(v) for k, v in self.controller.items()}
         doc = {
             "famcc": _core.__version__,
@@ -100,7 +110,7 @@ class Campaign:
             start,
             stop,
             self.family,
-            self.controller,
+            self.spec,
             vals,
             self.dt,
             self.steps,

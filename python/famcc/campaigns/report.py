@@ -12,7 +12,7 @@ from famcc.campaigns.controller import _controller
 from famcc.campaigns.dispersion import Fixed
 from famcc.campaigns.stats import _fmt, _pct, clopper_pearson
 from famcc.plants.base import is_real as _is_number
-from famcc.verdicts import STARTUP
+from famcc.verdicts import STARTUP, Status
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -217,7 +217,7 @@ def write(result: CampaignResult, out: str | Path, figures: bool = True, worst: 
         f" nominal {', '.join(f'{k} = {v:g}' for k, v in s.family.params.items())},"
         f" x(0) = {s.family.x0.tolist()}"
     )
-    lines.append(f"- controller: `{_controller(s.controller, {})!r}`")
+    lines.append(f"- controller: `{_controller(s.spec, {})!r}`")
     lines.append(f"- reference: {s.reference!r}; sensor noise sigma = {s.noise:g}")
     lim = "none" if s.u_limits is None else f"[{s.u_limits[0]:g}, {s.u_limits[1]:g}]"
     lines.append(
@@ -301,7 +301,7 @@ def write(result: CampaignResult, out: str | Path, figures: bool = True, worst: 
             _fmt(row["max_abs_xi_nominal"]),
             f"{100 * row['saturated_fraction']:.1f} %",
             _fmt(row["diverged_at"], "-"),
-            {1: "held", 0: "FAILED", -1: "untested"}[row["success"]],
+            Status.from_code(row["success"]).shown,
         ]
         lines.append("| " + " | ".join(cells) + " |")
     lines += [

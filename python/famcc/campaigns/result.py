@@ -15,6 +15,7 @@ from famcc.campaigns.controller import _controller, _corollary_time
 from famcc.campaigns.noise import NoisySensor, noise_keys
 from famcc.campaigns.stats import Rate, _pct, _rate
 from famcc.signals import Constant, Sine
+from famcc.verdicts import Status, combine_codes
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -79,9 +80,10 @@ class CampaignResult:
         when ``settle_by`` is None), ``max_abs_xi_nominal``,
         ``expanded_unsaturated_fraction``, ``saturated_fraction``,
         ``last_saturation_end`` (s, 0 when never saturated), ``diverged``,
-        ``diverged_at`` (s, NaN), one status column per criterion (1 held, 0
-        failed, -1 untested) and ``success`` (the same for the ``require`` ed
-        criteria together).
+        ``diverged_at`` (s, NaN), one status column per criterion (int8
+        :attr:`famcc.verdicts.Status.code`: 1 held, 0 failed, -1 untested) and
+        ``success`` (the ``require`` d criteria combined by
+        :func:`famcc.verdicts.combine`).
     overflows : int
         Steps at which a controller's law overflowed (it then held its output).
     """
@@ -124,28 +126,29 @@ class CampaignResult:
                 "controller.settle_time", np.full(s.cases, float(s.controller["settle_time"]))
             )
             z1_0 = self._initial_error()
-            deadline = np.maximum(t_e, settle_time) + _corollary_time(s.controller, z1_0)
+            deadline = np.maximum(t_e, settle_time) + _corollary_time(s.spec, z1_0)
         else:
             deadline = np.full(s.cases, float(s.settle_by))
+        held, failed, untested = (st.code for st in (Status.HELD, Status.FAILED, Status.UNTESTED))
         with np.errstate(invalid="ignore"):
             if s.settle_by is None:
-                settled = np.where(np.isfinite(settling), 1, 0)
+                settled = np.where(np.isfinite(settling), held, failed)
             else:
                 ok = np.isfinite(settling) & (settling <= deadline)
-                settled = np.where(deadline > t_last + 1e-9 * dt, -1, np.where(ok, 1, 0))
-        settled = np.where(diverged, 0, settled)
-        bounded = np.where(diverged, 0, 1)
+                beyond = deadline > t_last + 1e-9 * dt
+                settled = np.where(beyond, untested, np.where(ok, held, failed))
+        settled = np.where(diverged, failed, settled)
+        bounded = np.where(diverged, failed, held)
         if self.has_diagnostics:
-            nominal = np.where(diverged | (raw["exp_unsat_late"] > 0), 0, 1)
+            nominal = np.where(diverged | (raw["exp_unsat_late"] > 0), failed, held)
         else:
-            nominal = np.full(s.cases, -1)
+            nominal = np.full(s.cases, untested)
         if s.u_limits is None:
-            unsat = np.full(s.cases, -1)
+            unsat = np.full(s.cases, untested)
         else:
-            unsat = np.where(diverged | (raw["sat_late"] > 0), 0, 1)
+            unsat = np.where(diverged | (raw["sat_late"] > 0), failed, held)
         status = {"settled": settled, "bounded": bounded, "nominal": nominal, "unsaturated": unsat}
-        req = np.array([status[c] for c in s.require])
-        success = np.where((req == 0).any(axis=0), 0, np.where((req == -1).any(axis=0), -1, 1))
+        success = combine_codes(np.array([status[c] for c in s.require]))
         xi = raw["max_xi_nominal"] if self.has_diagnostics else np.full(s.cases, np.nan)
         frac_exp = raw["exp_unsat"] / samples if self.has_diagnostics else np.full(s.cases, np.nan)
         table.update(
@@ -161,7 +164,7 @@ class CampaignResult:
         )
         for c in CRITERIA:
             table[c] = status[c].astype(np.int8)
-        table["success"] = success.astype(np.int8)
+        table["success"] = success
         return table
 
     def _initial_error(self) -> np.ndarray:
@@ -214,7 +217,9 @@ class CampaignResult:
         later settling first, then larger max nominal ``|xi|``.
         """
         t = self.table
-        rank = np.select([t["diverged"], t["success"] == 0, t["success"] == -1], [0, 1, 2], 3)
+        success = t["success"]
+        worse = [t["diverged"], success == Status.FAILED.code, success == Status.UNTESTED.code]
+        rank = np.select(worse, [0, 1, 2], 3)
         div = np.nan_to_num(t["diverged_at"], nan=np.inf)
         settle = np.nan_to_num(t["settling_time"], nan=np.inf)
         xi = np.nan_to_num(t["max_abs_xi_nominal"], nan=0.0)
@@ -239,7 +244,7 @@ class CampaignResult:
             x0[j] = vals.get(f"x{j + 1}(0)", x0[j])
         plant = s.family.plant(x0=x0.tolist(), **params)
         over = {k.split(".", 1)[1]: v for k, v in vals.items() if k.startswith("controller.")}
-        ctrl: Any = _controller(s.controller, over)
+        ctrl: Any = _controller(s.spec, over)
         sigma = vals.get("noise.sigma", s.noise)
         if sigma > 0:
             key = int(noise_keys(s.seed, np.array([i]))[0])

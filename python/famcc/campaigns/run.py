@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core
 from famcc.campaigns.controller import _corollary_time, _preset_accuracy
 from famcc.campaigns.dispersion import _finite, distribution
 from famcc.campaigns.executors import _execute
@@ -36,7 +37,9 @@ def _resolve_family(fam: Any, variant: str | None) -> Family:
     )
 
 
-def _resolve_controller(controller: Any) -> dict[str, Any]:
+def _resolve_controller(controller: Any) -> tuple[dict[str, Any], _core.ControllerSpec]:
+    """The controller's configuration (data, for reports and the fingerprint) and its spec
+    (what the chunks copy)."""
     if hasattr(controller, "config") and hasattr(controller, "step"):
         ctrl = controller
     elif callable(getattr(controller, "controller", None)):
@@ -49,7 +52,10 @@ def _resolve_controller(controller: Any) -> dict[str, Any]:
     cfg = ctrl.config()
     if not isinstance(cfg, dict) or "order" not in cfg or "dt" not in cfg:
         raise ValueError("controller.config() must give the famcc.Controller configuration")
-    return dict(cfg)
+    spec = getattr(ctrl, "spec", None)
+    if not isinstance(spec, _core.ControllerSpec):
+        spec = _core.ControllerSpec.from_config(dict(cfg))
+    return dict(cfg), spec
 
 
 def _check_keys(fam: Family, dispersion: Mapping[str, Any], reference: Any) -> None:
@@ -200,7 +206,7 @@ def campaign(
     (10, True)
     """
     fam = _resolve_family(family, variant)
-    cfg = _resolve_controller(controller)
+    cfg, ctrl_spec = _resolve_controller(controller)
     if cfg["order"] != fam.order:
         raise ValueError(
             f"the controller's order ({cfg['order']}) must equal the family's ({fam.order})"
@@ -252,12 +258,13 @@ def campaign(
     if not (settle_by is None or settle_by == "bound" or _is_number(settle_by)):
         raise ValueError(f"settle_by must be seconds, 'bound' or None, got {settle_by!r}")
     if settle_by == "bound":
-        _corollary_time(cfg, np.zeros(1))  # raises for a design without a bound
+        _corollary_time(ctrl_spec, np.zeros(1))  # raises for a design without a bound
     disp = {str(k): distribution(v) for k, v in (dispersion or {}).items()}
     _check_keys(fam, disp, reference)
     spec = Campaign(
         family=fam,
         controller=cfg,
+        controller_spec=ctrl_spec,
         cases=int(cases),
         t_end=t_end,
         dt=dt,

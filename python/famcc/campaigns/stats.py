@@ -8,6 +8,8 @@ from typing import Any
 
 import numpy as np
 
+from famcc.verdicts import Status
+
 
 def _betacf(a: float, b: float, x: float) -> float:
     """Continued fraction of the incomplete beta function (modified Lentz)."""
@@ -167,9 +169,9 @@ def _pct(v: float, unit: bool = True) -> str:
 
 
 def _rate(name: str, status: np.ndarray, confidence: float) -> Rate:
-    held = int(np.sum(status == 1))
-    failed = int(np.sum(status == 0))
-    untested = int(np.sum(status == -1))
+    held = int(np.sum(status == Status.HELD.code))
+    failed = int(np.sum(status == Status.FAILED.code))
+    untested = int(np.sum(status == Status.UNTESTED.code))
     if held + failed:
         lo, hi = clopper_pearson(held, held + failed, confidence)
     else:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Sequence
 from typing import Any
@@ -130,7 +129,7 @@ def run_record(
         "input": [result.input.name, result.input.unit],
         "controller": result.controller_description,
         "reference": result.reference_repr,
-        "verdicts": [dataclasses.asdict(v) for v in found],
+        "verdicts": [v.record() for v in found],
         "verdict_counts": verdicts.count(found),
         "violations": [v.text() for v in found if v.failed],
         "guarantees": _guarantee_text(found),
@@ -172,7 +171,7 @@ def measure(scenario: Any, result: Any, runtime_s: float | None = None) -> dict[
 def diverged(scenario: Any, exc: BaseException, runtime_s: float | None = None) -> dict[str, Any]:
     """The record of a run that blew up: every claim failed, no metrics."""
     found = [
-        verdicts.Verdict(name, name, "failed", f"the closed loop diverged: {exc}")
+        verdicts.Verdict(name, name, verdicts.Status.FAILED, f"the closed loop diverged: {exc}")
         for name in scenario.claims
     ]
     keys = (
@@ -225,7 +224,7 @@ def diverged(scenario: Any, exc: BaseException, runtime_s: float | None = None) 
         "input": None,
         "controller": None,
         "reference": None,
-        "verdicts": [dataclasses.asdict(v) for v in found],
+        "verdicts": [v.record() for v in found],
         "verdict_counts": verdicts.count(found),
         "violations": [v.text() for v in found],
         "guarantees": _guarantee_text(found),

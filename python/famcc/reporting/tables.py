@@ -6,6 +6,8 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from famcc.verdicts import Status
+
 
 def _f(v: Any, digits: int = 3) -> str:
     if v is None:
@@ -125,8 +127,8 @@ def _verdict_lines(records: Sequence[dict[str, Any]]) -> list[str]:
     lines = [f"| {first} | claim | status | what the run showed |", "|---|---|---|---|"]
     for r in records:
         for v in r["verdicts"]:
-            status = v["status"].upper() if v["status"] == "failed" else v["status"]
-            if v["known"] and v["status"] == "failed":
+            status = Status(v["status"]).shown
+            if v["known"] and v["status"] == Status.FAILED:
                 status += " (known, docs/errata.md)"
             lines.append(
                 f"| {_label(r)} | {v['claim'].replace('|', chr(92) + '|')} | "

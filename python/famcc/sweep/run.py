@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from famcc.scenarios import substeps_for
-from famcc.verdicts import STARTUP
+from famcc.verdicts import STARTUP, Status
 
 #: Sample rates of the sweep, Hz.
 RATES_HZ = (50, 100, 200, 300, 500, 1000, 2000, 5000, 10000)
@@ -132,7 +132,7 @@ def run_one(
     kind = "max(T_e, T_s) + T'" if res.saturation_episodes() else "T_s + T'"
     found = sc.verdicts(res)
     violations = [v.text() for v in found if v.failed]
-    untested = [v.text() for v in found if v.status == "untested"]
+    untested = [v.text() for v in found if v.status is Status.UNTESTED]
     xi = res.max_abs_xi
     expansion = res.largest_expansion
     late = res.t >= STARTUP
@@ -162,7 +162,7 @@ def run_one(
             "saturated_after_startup": sat_late,
             "expanded_after_startup": exp_late,
             "expanded_without_saturation": expanded_unsat,
-            "verdicts": [{"name": v.name, "status": v.status, "detail": v.detail} for v in found],
+            "verdicts": [{k: v.record()[k] for k in ("name", "status", "detail")} for v in found],
             "violations": violations,
             "untested": untested,
             "ok": not violations,

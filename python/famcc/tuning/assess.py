@@ -35,6 +35,8 @@ from typing import Any
 
 import numpy as np
 
+from famcc.verdicts import Status, Verdict, combine
+
 #: The largest ripple of ``u`` after settling, as a fraction of the input range.
 RIPPLE_LIMIT = 0.05
 
@@ -60,7 +62,13 @@ class Assessment:
     saturated : float
         Fraction of samples with ``v`` beyond the limits.
     failures : list of str
-        The requirements that failed, in words (empty when all hold).
+        The requirements that failed, in words (empty when all hold): the
+        details of the failed :attr:`verdicts`.
+    verdicts : tuple of famcc.verdicts.Verdict
+        One verdict per requirement (``settling``, ``steady``, ``nominal``,
+        ``ripple``; ``bounded`` for a diverged run): held, failed or
+        untested (``nominal`` without recorded diagnostics). Given only
+        ``failures``, one failed ``requirement`` verdict per text.
     """
 
     settling_time: float | None
@@ -70,11 +78,25 @@ class Assessment:
     effort: float
     saturated: float
     failures: list[str] = field(default_factory=list)
+    verdicts: tuple[Verdict, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not self.verdicts and self.failures:
+            failed = tuple(Verdict("requirement", f, Status.FAILED, f) for f in self.failures)
+            object.__setattr__(self, "verdicts", failed)
+        elif self.verdicts and not self.failures:
+            texts = [v.detail for v in self.verdicts if v.failed]
+            object.__setattr__(self, "failures", texts)
 
     @property
     def ok(self) -> bool:
-        """True when every requirement held."""
+        """True when no requirement failed."""
         return not self.failures
+
+    @property
+    def status(self) -> Status:
+        """The requirements together (:func:`famcc.verdicts.combine`)."""
+        return combine(v.status for v in self.verdicts)
 
     def metrics(self) -> dict[str, Any]:
         """The measured numbers as a dict."""
@@ -127,7 +149,8 @@ def assess(
     if not hi > lo:
         raise ValueError(f"u_limits must be (lo, hi) with lo < hi, got {tuple(u_limits)!r}")
     if result is None:
-        return Assessment(None, math.inf, 0.0, math.inf, math.inf, 0.0, ["diverged"])
+        gone = Verdict("bounded", "the run stays bounded", Status.FAILED, "diverged")
+        return Assessment(None, math.inf, 0.0, math.inf, math.inf, 0.0, verdicts=(gone,))
     t = np.asarray(result.t)
     z1 = np.asarray(result.z1)
     u = np.asarray(result.u)
@@ -143,17 +166,37 @@ def assess(
     steady = float(np.max(np.abs(z1[tail])))
     ripple = float(np.ptp(u[after])) / (hi - lo) if np.any(after) else math.inf
     effort = float(np.sum(np.abs(np.diff(u))) / max(float(t[-1]), 1e-300))
-    failures = []
+    held, failed, untested = Status.HELD, Status.FAILED, Status.UNTESTED
+    claim = f"|e| < {eps:g} for good by {settle_time:g} s"
     if ts is None:
-        failures.append("never settled")
+        settling = Verdict("settling", claim, failed, "never settled")
     elif ts > settle_time:
-        failures.append(f"settled at {ts:.3g} s > {settle_time:g} s")
-    if not steady < eps:
-        failures.append(f"steady |e| {steady:.3g} >= eps {eps:g}")
-    if exp_unsat > 0:
-        failures.append(f"bounds expanded with headroom {100 * exp_unsat:.2g} % of the time")
-    if ripple > ripple_limit:
-        failures.append(f"u ripple {100 * ripple:.3g} % > {100 * ripple_limit:g} % of the range")
+        settling = Verdict("settling", claim, failed, f"settled at {ts:.3g} s > {settle_time:g} s")
+    else:
+        settling = Verdict("settling", claim, held, f"settled at {ts:.3g} s")
+    claim = f"max |e| over the last fifth < {eps:g}"
+    ok = steady < eps
+    detail = f"steady |e| {steady:.3g} {'<' if ok else '>='} eps {eps:g}"
+    steady_v = Verdict("steady", claim, held if ok else failed, detail)
+    claim = "no expansion of the bounds after settling while v has headroom"
+    if expanded is None:
+        nominal = Verdict("nominal", claim, untested, "diagnostics were not recorded")
+    elif exp_unsat > 0:
+        why = f"bounds expanded with headroom {100 * exp_unsat:.2g} % of the time"
+        nominal = Verdict("nominal", claim, failed, why)
+    else:
+        nominal = Verdict("nominal", claim, held, "never expanded with headroom")
+    claim = f"u ripple after settling <= {100 * ripple_limit:g} % of the range"
+    ok = not ripple > ripple_limit
+    sign = "<=" if ok else ">"
+    detail = f"u ripple {100 * ripple:.3g} % {sign} {100 * ripple_limit:g} % of the range"
+    ripple_v = Verdict("ripple", claim, held if ok else failed, detail)
     return Assessment(
-        ts, steady, exp_unsat, ripple, effort, float(result.saturated_fraction), failures
+        ts,
+        steady,
+        exp_unsat,
+        ripple,
+        effort,
+        float(result.saturated_fraction),
+        verdicts=(settling, steady_v, nominal, ripple_v),
     )

@@ -46,12 +46,9 @@ against the user's own accuracy and time (:func:`settled_by`, :func:`settles`).
 >>> z1 = np.where(t < 2.0, 1.0, 0.01)          # settles at 2 s
 >>> r = famcc.SimResult(t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None],
 ...                     v=0 * t, u=0 * t, dt=0.01)
->>> verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=2.0).status
-'held'
->>> verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=0.5).status
-'failed'
->>> verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=9.0).status
-'untested'
+>>> [str(verdicts.settling(r, eps=0.1, settle_time=1.0, t_prime=tp).status)
+...  for tp in (2.0, 0.5, 9.0)]
+['held', 'failed', 'untested']
 """
 
 from __future__ import annotations
@@ -66,12 +63,16 @@ from famcc.verdicts.claims import (
     settling,
     unsaturated,
 )
-from famcc.verdicts.verdict import STARTUP, STATUSES, Verdict, count, recovery_windows
+from famcc.verdicts.status import STATUSES, Status, combine, combine_codes
+from famcc.verdicts.verdict import STARTUP, Verdict, count, recovery_windows
 
 __all__ = [
     "STARTUP",
     "STATUSES",
+    "Status",
     "Verdict",
+    "combine",
+    "combine_codes",
     "count",
     "nominal",
     "nominal_again",

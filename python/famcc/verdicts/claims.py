@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc.verdicts.status import Status
 from famcc.verdicts.verdict import (
     STARTUP,
     Verdict,
@@ -31,15 +32,15 @@ def settling(result: Any, eps: float, settle_time: float, t_prime: float) -> Ver
         return Verdict(
             "settling",
             claim,
-            "untested",
+            Status.UNTESTED,
             f"the bound {bound:.3g} s lies beyond the horizon {horizon:g} s (settled at {_t(ts)})",
         )
     if ts is not None and ts <= bound:
-        return Verdict("settling", claim, "held", f"settled at {ts:.3f} s")
+        return Verdict("settling", claim, Status.HELD, f"settled at {ts:.3f} s")
     return Verdict(
         "settling",
         claim,
-        "failed",
+        Status.FAILED,
         "never settled" if ts is None else f"settled only at {ts:.3f} s",
     )
 
@@ -48,16 +49,16 @@ def unsaturated(result: Any, startup: float = STARTUP) -> Verdict:
     """The commanded ``v`` stays inside the limits after the start-up window."""
     claim = f"v inside the limits after the start-up ({startup:g} s)"
     if result.u_limits is None:
-        return Verdict("unsaturated", claim, "untested", "the run had no limits")
+        return Verdict("unsaturated", claim, Status.UNTESTED, "the run had no limits")
     late = np.asarray(result.t) >= startup
     sat = np.asarray(result.saturated)[late]
     if not sat.any():
-        return Verdict("unsaturated", claim, "held", "never outside after the start-up")
+        return Verdict("unsaturated", claim, Status.HELD, "never outside after the start-up")
     first = float(np.asarray(result.t)[late][int(np.argmax(sat))])
     return Verdict(
         "unsaturated",
         claim,
-        "failed",
+        Status.FAILED,
         f"outside the limits at {100 * float(np.mean(sat)):.1f} % of the samples "
         f"after the start-up, first at {first:.3f} s",
     )
@@ -68,7 +69,7 @@ def nominal(result: Any, startup: float = STARTUP) -> Verdict:
     claim = f"bounds nominal (state inside the nominal constraint) after {startup:g} s"
     exp = _expanded(result)
     if exp is None:
-        return Verdict("nominal", claim, "untested", "diagnostics were not recorded")
+        return Verdict("nominal", claim, Status.UNTESTED, "diagnostics were not recorded")
     late = np.asarray(result.t) >= startup
     bad = exp[late]
     if not bad.any():
@@ -78,12 +79,12 @@ def nominal(result: Any, startup: float = STARTUP) -> Verdict:
             if xi_nom is None
             else f" (max nominal |xi| {float(np.max(np.abs(xi_nom[late]))):.3f})"
         )
-        return Verdict("nominal", claim, "held", "never expanded after the start-up" + tail)
+        return Verdict("nominal", claim, Status.HELD, "never expanded after the start-up" + tail)
     first = float(np.asarray(result.t)[late][int(np.argmax(bad))])
     return Verdict(
         "nominal",
         claim,
-        "failed",
+        Status.FAILED,
         f"expanded at {100 * float(np.mean(bad)):.1f} % of the samples after the "
         f"start-up, first at {first:.3f} s, up to {result.largest_expansion:.3g}x",
     )
@@ -112,15 +113,15 @@ def settles(result: Any, eps: float, within: float, known_failure: bool = False)
     z1 = np.abs(np.asarray(result.z1, dtype=float))[upto]
     outside = np.flatnonzero(~(z1 < eps))
     if outside.size == 0:
-        return Verdict("settles", claim, "held", "inside the band from the first sample")
+        return Verdict("settles", claim, Status.HELD, "inside the band from the first sample")
     last = int(outside[-1])
     if last + 1 < z1.size:
-        return Verdict("settles", claim, "held", f"settled at {float(t[last + 1]):.3f} s")
+        return Verdict("settles", claim, Status.HELD, f"settled at {float(t[last + 1]):.3f} s")
     sat = 100 * float(np.mean(np.asarray(result.saturated)[upto]))
     return Verdict(
         "settles",
         claim,
-        "failed",
+        Status.FAILED,
         f"|z1| = {float(z1[-1]):.3g} at {horizon:g} s (saturated {sat:.0f} % of the "
         "time until then)",
         known=known_failure,
@@ -133,14 +134,14 @@ def _windows_verdict(
     horizon = float(result.t[-1])
     windows = recovery_windows(result, settle_time, t_prime)
     if not windows:
-        return Verdict(name, claim, "untested", "the actuator never saturated")
+        return Verdict(name, claim, Status.UNTESTED, "the actuator never saturated")
     due = [w for w in windows if _is_due(w, horizon)]
     if not due:
         gaps = [w[2] - w[0] for w in windows]
         return Verdict(
             name,
             claim,
-            "untested",
+            Status.UNTESTED,
             f"no claim fell due: after each of the {len(windows)} episodes "
             f"saturation returned (or the run ended) within {max(gaps):.3g} s, "
             f"sooner than T' = {t_prime:.3g} s",
@@ -159,10 +160,12 @@ def _windows_verdict(
         return Verdict(
             name,
             claim,
-            "failed",
+            Status.FAILED,
             f"{len(failures)} of {n} due windows fail; " + "; ".join(failures[:2]),
         )
-    return Verdict(name, claim, "held", f"all {n} due windows hold; {len(windows) - n} not due")
+    return Verdict(
+        name, claim, Status.HELD, f"all {n} due windows hold; {len(windows) - n} not due"
+    )
 
 
 def recovery(result: Any, eps: float, settle_time: float, t_prime: float) -> Verdict:
@@ -185,7 +188,7 @@ def nominal_again(result: Any, settle_time: float, t_prime: float) -> Verdict:
     claim = "bounds nominal again by max(T_e, T_s) + T' after every saturation episode"
     exp = _expanded(result)
     if exp is None:
-        return Verdict("nominal-again", claim, "untested", "diagnostics were not recorded")
+        return Verdict("nominal-again", claim, Status.UNTESTED, "diagnostics were not recorded")
 
     def bad(mask: np.ndarray) -> str:
         n = int(np.count_nonzero(exp[mask]))
@@ -212,7 +215,7 @@ def settled_by(result: Any, eps: float, by: float) -> Verdict:
     >>> r = famcc.SimResult(t=t, y=z1, y_d=0 * t, x=z1[:, None], z=z1[:, None],
     ...                     v=0 * t, u=0 * t, dt=0.01)
     >>> [settled_by(r, 0.1, by).status for by in (2.0, 1.0, 5.0)]
-    ['held', 'failed', 'untested']
+    [<Status.HELD: 'held'>, <Status.FAILED: 'failed'>, <Status.UNTESTED: 'untested'>]
     """
     horizon = float(result.t[-1])
     ts = result.settling_time(eps)
@@ -223,13 +226,13 @@ def settled_by(result: Any, eps: float, by: float) -> Verdict:
         return Verdict(
             "settled-by",
             claim,
-            "untested",
+            Status.UNTESTED,
             f"{by:g} s lies beyond the horizon {horizon:g} s (settled at {_t(ts)})",
         )
     if ts is not None and ts <= by:
-        return Verdict("settled-by", claim, "held", f"settled at {ts:.3f} s")
+        return Verdict("settled-by", claim, Status.HELD, f"settled at {ts:.3f} s")
     why = "outside the band at the end of the run" if ts is None else f"settled only at {ts:.3f} s"
-    return Verdict("settled-by", claim, "failed", why)
+    return Verdict("settled-by", claim, Status.FAILED, why)
 
 
 def requirements(
@@ -259,7 +262,7 @@ def requirements(
     >>> requirements(r)
     []
     >>> [(v.name, v.status) for v in requirements(r, eps=0.1, settle_time=2.5)]
-    [('settled-by', 'held')]
+    [('settled-by', <Status.HELD: 'held'>)]
     """
     if eps is None:
         if settle_time is not None:

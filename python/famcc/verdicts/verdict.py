@@ -8,14 +8,13 @@ from typing import Any
 
 import numpy as np
 
+from famcc.verdicts.status import STATUSES, Status
+
 #: Seconds at the start treated as the differentiator's start-up transient:
 #: the high-gain differentiator starts from ``(e0, 0, ...)`` and peaks for a
 #: few time constants (``mu = 0.01`` s; about 0.1 s at order 3). Saturation
 #: and expansion before it are not held against the nominal claims.
 STARTUP = 0.15
-
-#: The three statuses, in the order reports list them.
-STATUSES = ("held", "failed", "untested")
 
 
 @dataclass(frozen=True)
@@ -28,8 +27,9 @@ class Verdict:
         Short identifier (``"settling"``, ``"recovery"``, ...).
     claim : str
         The claim in plain words, with its numbers.
-    status : str
-        ``"held"``, ``"failed"`` or ``"untested"``.
+    status : Status
+        ``"held"``, ``"failed"`` or ``"untested"`` (given as a string or a
+        :class:`Status`; kept as a :class:`Status`, which is a string).
     detail : str
         What the run showed (numbers), or why the claim could not be tested.
     known : bool
@@ -38,28 +38,41 @@ class Verdict:
 
     name: str
     claim: str
-    status: str
+    status: Status
     detail: str
     known: bool = False
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:
-            raise ValueError(f"status must be one of {STATUSES}, got {self.status!r}")
+            raise ValueError(
+                f"status must be one of {tuple(s.value for s in STATUSES)}, got {self.status!r}"
+            )
+        object.__setattr__(self, "status", Status(self.status))
 
     @property
     def failed(self) -> bool:
         """True when the run broke the claim."""
-        return self.status == "failed"
+        return self.status is Status.FAILED
+
+    def record(self) -> dict[str, Any]:
+        """The verdict as plain data (its fields; the status as a string), for JSON."""
+        return {
+            "name": self.name,
+            "claim": self.claim,
+            "status": self.status.value,
+            "detail": self.detail,
+            "known": self.known,
+        }
 
     def text(self) -> str:
         """``"name: status (detail)"``, one line."""
         tail = " (known, docs/errata.md)" if self.known and self.failed else ""
-        return f"{self.name}: {self.status}{tail}: {self.detail}"
+        return f"{self.name}: {self.status.value}{tail}: {self.detail}"
 
 
 def count(verdicts: Sequence[Verdict]) -> dict[str, int]:
     """Number of verdicts per status, plus ``"tested"`` (held + failed) and ``"total"``."""
-    out = {s: sum(v.status == s for v in verdicts) for s in STATUSES}
+    out = {s.value: sum(v.status == s for v in verdicts) for s in STATUSES}
     out["tested"] = out["held"] + out["failed"]
     out["total"] = len(verdicts)
     return out
@@ -123,4 +136,6 @@ def _diverged(result: Any, name: str, claim: str) -> Verdict | None:
     at = getattr(result, "diverged_at", None)
     if at is None:
         return None
-    return Verdict(name, claim, "failed", f"the run diverged at {float(at):.3g} s (stopped there)")
+    return Verdict(
+        name, claim, Status.FAILED, f"the run diverged at {float(at):.3g} s (stopped there)"
+    )

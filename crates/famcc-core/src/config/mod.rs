@@ -27,6 +27,7 @@
 //! ```
 
 mod builder;
+mod guarantees;
 mod lint;
 
 pub use builder::ConfigBuilder;

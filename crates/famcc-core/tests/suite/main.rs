@@ -17,6 +17,7 @@ mod f32_vs_f64;
 mod fast_path;
 mod fuzz;
 mod golden;
+mod guarantees;
 mod latch;
 mod no_alloc;
 mod no_flexible_clamp;
