@@ -12,7 +12,7 @@
 //! exponential transition, and the paper's differentiator
 //! ([`HighGain::paper`]: `mu = 0.01`, `a = (4, 4)` / `(4, 6, 4)`). Variant
 //! "code" latches the envelopes as the authors' code does
-//! ([`Latch::Authors`]).
+//! ([`famcc_core::Latch::Authors`]).
 //!
 //! ```
 //! use famcc_paper::designs::{self, Example, Variant};
@@ -23,31 +23,9 @@
 //! # Ok::<(), famcc_core::ConfigError>(())
 //! ```
 
-use famcc_core::{
-    bounds, Config, ConfigBuilder, ConfigError, Constraint, Feedback, HighGain, Latch, Real, Skew,
-};
+use famcc_core::{bounds, Config, ConfigBuilder, ConfigError, Constraint, Feedback, HighGain, Real, Skew};
 
-/// Which printed numbers a design or plant uses (docs/design.md §6.2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Variant {
-    /// As printed in the paper.
-    Paper,
-    /// As in the authors' MATLAB code (the default of famcc's scenarios).
-    Code,
-}
-
-impl Variant {
-    /// Both variants.
-    pub const ALL: [Variant; 2] = [Variant::Paper, Variant::Code];
-
-    /// The envelope latch of this variant (docs/design.md §3.4).
-    pub fn latch(self) -> Latch {
-        match self {
-            Variant::Paper => Latch::Paper,
-            Variant::Code => Latch::Authors,
-        }
-    }
-}
+pub use crate::variant::Variant;
 
 /// The paper's three examples.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -47,5 +47,7 @@
 pub mod designs;
 pub mod plants;
 pub mod rk4;
+pub mod variant;
 
-pub use designs::{Example, Variant};
+pub use designs::Example;
+pub use variant::Variant;

@@ -27,7 +27,7 @@
 //! assert_eq!(p.rhs(&Clock::at(0.0), &x, 0.0)[0], y[1]);
 //! ```
 
-use crate::designs::Variant;
+use crate::variant::Variant;
 use core::ops::{Add, Mul, Neg, Sub};
 use famcc_core::{Jet, Real};
 use num_traits::Float;

@@ -3,12 +3,13 @@
 //! defaults are famcc-core's (the signature's defaults name them).
 
 use crate::args::{Args, DiffArg, RhoArg, AUTO};
-use crate::controller_spec::{module_function, ControllerSpec};
 use crate::diagnostics::Diagnostics;
 use crate::dispatch::Core;
 use crate::errors::{kind, step_err, ConfigFault, StepFault};
+use crate::module::module_function;
 use crate::names::{CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::number::{Int, Num, Text};
+use crate::spec::ControllerSpec;
 use crate::spec::Spec;
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use numpy::{PyArray1, PyReadonlyArray1};

@@ -1,7 +1,7 @@
 //! `famcc._core.ControllerSpec`: a parsed controller configuration (the
 //! binding's [`Spec`]) that builds controllers without keyword arguments or
 //! text: what `famcc.design` returns besides its numbers, and what
-//! `Controller.replace` copies. Also the construction of a
+//! `Controller.replace` copies (the class is declared in spec.rs). Also the construction of a
 //! [`PyController`] from a spec, with the constructor's warnings.
 
 use crate::array::map_float_or_array;
@@ -9,29 +9,12 @@ use crate::controller::PyController;
 use crate::dispatch::Core;
 use crate::errors::config_err;
 use crate::health::design_warning;
+use crate::module::module_function;
 use crate::names::{DType, DTYPE};
 use crate::replace::spec_from_kwargs;
-use crate::spec::{RhoE, Spec};
+use crate::spec::{ControllerSpec, RhoE, Spec};
 use pyo3::prelude::*;
-use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyTuple};
-
-/// The module `famcc._core`, kept at its initialization (pickling names
-/// its functions).
-static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
-
-/// Keeps the module for [`module_function`].
-pub fn remember_module(m: &Bound<'_, PyModule>) {
-    let _ = MODULE.set(m.py(), m.clone().unbind());
-}
-
-/// The function `name` of `famcc._core` (for `__reduce__`).
-pub fn module_function<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-    match MODULE.get(py) {
-        Some(m) => m.bind(py).getattr(name),
-        None => py.import("famcc._core")?.getattr(name),
-    }
-}
 
 impl PyController {
     /// Builds the controller of `spec`, whose `rho_e` then shows the margin
@@ -59,33 +42,6 @@ impl PyController {
     pub fn set_state_vec(&mut self, v: &[f64]) -> PyResult<()> {
         self.core.set_state(v)
     }
-}
-
-/// A controller's configuration, parsed and typed; :meth:`build` makes the
-/// controller.
-///
-/// Returned by :func:`famcc.design` (``Design.spec``): the design's
-/// configuration, built into a :class:`Controller` without keyword
-/// arguments or text. Frozen and picklable. Its values are checked when a
-/// controller is built (by famcc-core, as in the :class:`Controller`
-/// constructor).
-///
-/// Examples
-/// --------
-/// >>> import famcc
-/// >>> d = famcc.design(2, 1e-3, u_limits=(-12, 12), eps=0.01, settle_time=2.0,
-/// ...                  hold_input=4.0, gain=25.0)
-/// >>> spec = d.spec
-/// >>> spec.order, spec.dt
-/// (2, 0.001)
-/// >>> spec.build().config() == d.controller().config()
-/// True
-/// >>> spec.replace(k_u=10.0).config()["k_u"]
-/// 10.0
-#[pyclass(frozen, module = "famcc._core", name = "ControllerSpec")]
-#[derive(Clone)]
-pub struct ControllerSpec {
-    pub spec: Spec,
 }
 
 #[pymethods]

@@ -1,11 +1,11 @@
 //! `famcc_core::design` for Python: the rules' numbers, translated to a
 //! dict, and the design's configuration as a `ControllerSpec`.
 
-use crate::controller_spec::ControllerSpec;
 use crate::differentiator::HighGain;
 use crate::errors::config_err;
 use crate::laws::{Law, Linear};
 use crate::names::DType;
+use crate::spec::ControllerSpec;
 use crate::spec::{RhoE, Spec};
 use famcc_core::design::{self, Design, Level, Requirements, Rule};
 use famcc_core::{Constraint, Gamma};

@@ -8,7 +8,8 @@
 //! | `errors`, `bind` | the exception and warning classes, and their methods |
 //! | `names` | Python names of the core's enumerations |
 //! | `args` | the constructor's arguments, parsed into a typed `spec` |
-//! | `spec` | a controller's configuration, fed to the core's builder |
+//! | `spec` | a controller's configuration, fed to the core's builder; the `ControllerSpec` class |
+//! | `module` | `famcc._core` kept for pickling (`module_function`) |
 //! | `controller_spec`, `replace` | `ControllerSpec`; specs changed or read without text |
 //! | `kwargs` | a spec as keyword arguments (`config()`, `repr`, pickling) |
 //! | `orders`, `dispatch` | run-time order and float type to the core's generics |
@@ -41,6 +42,7 @@ mod functions;
 mod health;
 mod kwargs;
 mod laws;
+mod module;
 mod names;
 mod number;
 mod orders;
@@ -78,12 +80,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sim::Lockstep>()?;
     m.add_class::<sim_plants::PaperLanes>()?;
     m.add_function(wrap_pyfunction!(kwargs::_controller_from_state, m)?)?;
-    m.add_class::<controller_spec::ControllerSpec>()?;
+    m.add_class::<spec::ControllerSpec>()?;
     m.add_function(wrap_pyfunction!(
         controller_spec::_controller_spec_from_kwargs,
         m
     )?)?;
-    controller_spec::remember_module(m);
+    module::remember_module(m);
     m.add_function(wrap_pyfunction!(functions::transition_t, m)?)?;
     m.add_function(wrap_pyfunction!(functions::transition_s, m)?)?;
     m.add_function(wrap_pyfunction!(functions::transition_u, m)?)?;

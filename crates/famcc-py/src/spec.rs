@@ -8,6 +8,7 @@ use crate::names::DType;
 use crate::orders::to_array;
 use crate::skews::SkewSpec;
 use famcc_core::{Config, ConfigError, Constraint, Gamma, Latch, Real, Transition};
+use pyo3::prelude::*;
 
 /// The flexible-boundary margin as given.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -133,4 +134,31 @@ impl Spec {
             initial_output: cfg.initial_output().map(f),
         }
     }
+}
+
+/// A controller's configuration, parsed and typed; :meth:`build` makes the
+/// controller.
+///
+/// Returned by :func:`famcc.design` (``Design.spec``): the design's
+/// configuration, built into a :class:`Controller` without keyword
+/// arguments or text. Frozen and picklable. Its values are checked when a
+/// controller is built (by famcc-core, as in the :class:`Controller`
+/// constructor).
+///
+/// Examples
+/// --------
+/// >>> import famcc
+/// >>> d = famcc.design(2, 1e-3, u_limits=(-12, 12), eps=0.01, settle_time=2.0,
+/// ...                  hold_input=4.0, gain=25.0)
+/// >>> spec = d.spec
+/// >>> spec.order, spec.dt
+/// (2, 0.001)
+/// >>> spec.build().config() == d.controller().config()
+/// True
+/// >>> spec.replace(k_u=10.0).config()["k_u"]
+/// 10.0
+#[pyclass(frozen, module = "famcc._core", name = "ControllerSpec")]
+#[derive(Clone)]
+pub struct ControllerSpec {
+    pub spec: Spec,
 }

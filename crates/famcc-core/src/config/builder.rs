@@ -1,7 +1,8 @@
 //! [`ConfigBuilder`]: the values of a configuration under construction,
 //! and the one place where they are checked.
 
-use super::{check_estimate_limits, Config, DEFAULT_K0, DEFAULT_SETTLE_TIME};
+use super::options::check_options;
+use super::{Config, DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use crate::error::{positive, scale, ConfigError};
 use crate::{Constraint, DiscreteHgd, Feedback, Gamma, HighGain, Latch, Real, Skew, SkewedLaw, Transition};
 
@@ -346,34 +347,13 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
                 h.validate_values(plant_order)?;
             }
         }
-        if let Some(d) = &self.initial_derivatives {
-            if d.iter().any(|v| !v.is_finite()) {
-                return Err(ConfigError::new("initial_derivatives", "must be finite"));
-            }
-            if d.iter().any(|v| v.abs() > T::scale_limit()) {
-                return Err(ConfigError::new(
-                    "initial_derivatives",
-                    "must be at most 2^256 in f64 and 2^32 in f32 in magnitude (moderate values, e.g. 0)",
-                ));
-            }
-        }
-        if let Some(l) = &self.estimate_limits {
-            check_estimate_limits(l)?;
-        }
-        if let Some((lo, hi)) = self.output_limits {
-            if lo.partial_cmp(&hi) != Some(core::cmp::Ordering::Less) {
-                return Err(ConfigError::new(
-                    "output_limits",
-                    "must be a pair lo < hi (infinite ends allowed, NaN not)",
-                ));
-            }
-        }
-        if let Some(r) = self.rate_limit {
-            positive(r, "rate_limit")?;
-        }
-        if self.initial_output.is_some_and(|u| !u.is_finite()) {
-            return Err(ConfigError::new("initial_output", "must be finite"));
-        }
+        check_options(
+            self.initial_derivatives.as_ref(),
+            self.estimate_limits.as_ref(),
+            self.output_limits,
+            self.rate_limit,
+            self.initial_output,
+        )?;
         Ok((laws, rho_e, plant_order))
     }
 

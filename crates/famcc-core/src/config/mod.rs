@@ -29,9 +29,11 @@
 mod builder;
 mod guarantees;
 mod lint;
+mod options;
 
 pub use builder::ConfigBuilder;
 pub use lint::{Finding, Findings, Lint, Suggestion, LINT_COUNT};
+pub use options::check_estimate_limits;
 
 use crate::differentiator::{DiscreteHgd, Recursion};
 use crate::error::ConfigError;
@@ -70,24 +72,6 @@ pub fn check_order(order: usize) -> Result<(), ConfigError> {
             concat!("must be between 1 and ", max_order!()),
         ))
     }
-}
-
-/// Checks the estimate limits `|z_hat_i| <= limit_i` (docs/design.md §3.8):
-/// every limit `> 0`, infinity allowed (no limit for that estimate).
-///
-/// ```
-/// use famcc_core::config::check_estimate_limits;
-/// assert!(check_estimate_limits(&[2.0_f64, f64::INFINITY]).is_ok());
-/// assert!(check_estimate_limits(&[2.0_f64, 0.0]).is_err());
-/// ```
-pub fn check_estimate_limits<T: Real>(limits: &[T]) -> Result<(), ConfigError> {
-    if limits.iter().any(|v| v.is_nan() || *v <= T::zero()) {
-        return Err(ConfigError::new(
-            "estimate_limits",
-            "must all be > 0 (inf allowed)",
-        ));
-    }
-    Ok(())
 }
 
 /// Everything that defines a FAMCC controller of order `N`, validated.
@@ -226,6 +210,20 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// `(z1, ..., zn)` in slots `offset..N`.
     pub fn estimate_offset(&self) -> usize {
         usize::from(self.integral())
+    }
+
+    /// The first step's estimate `(e0, d2, ..., dn)` in slots `offset..N`
+    /// (docs/design.md §3.4; the integral starts at 0): what the first step,
+    /// the validation probe and the recovery rule's restart start from.
+    #[inline]
+    pub(crate) fn initial_estimate(&self, e: T) -> [T; N] {
+        let mut z = self.initial_derivatives().copied().unwrap_or([T::zero(); N]);
+        let off = self.estimate_offset();
+        z.iter_mut().take(off).for_each(|i| *i = T::zero());
+        if let Some(z1) = z.get_mut(off) {
+            *z1 = e;
+        }
+        z
     }
 
     /// The magnitude limits `(lo, hi)` of the output (`step` returns the

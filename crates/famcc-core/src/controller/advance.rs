@@ -7,7 +7,7 @@
 
 use super::output::{Limited, Limits};
 use super::recover::{in_range, width_in_range, Cause};
-use super::{recover, Controller, Measured};
+use super::{Controller, Measured};
 use crate::differentiator::{self, Recursion};
 use crate::error::StepError;
 use crate::{manifold, Real};
@@ -306,7 +306,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
         f: impl FnOnce() -> T,
     ) -> [T; N] {
         if first {
-            return recover::initial_estimate(&self.config, e);
+            return self.config.initial_estimate(e);
         }
         if PLAIN || !d.has_feedthrough() {
             return self.state.zhat;

@@ -19,7 +19,6 @@
 //! with state feedback, the stage laws otherwise.
 
 use super::clock::Clock;
-use super::recover::initial_estimate;
 use super::{Controller, Measured};
 use crate::{differentiator, Config, ConfigError, Real};
 
@@ -108,7 +107,7 @@ fn runs<T: Real, const N: usize>(c: &Config<T, N>, output: bool) -> bool {
     let by_error = output && (c.recursion().is_some() || !differentiator::needed_at(c.plant_order()));
     probe_errors().all(|e| {
         let e = T::from_f64(e);
-        let z = initial_estimate(c, e);
+        let z = c.initial_estimate(e);
         let mut ctrl = Controller::new(*c);
         let step = |ctrl: &mut Controller<T, N>| step_ok(ctrl, by_error, e, z);
         if !(step(&mut ctrl) && step(&mut ctrl)) {

@@ -110,24 +110,11 @@ fn moderate<T: Real, const N: usize>(m: &Measured<T, N>) -> bool {
 fn seed<T: Real, const N: usize>(c: &Config<T, N>, m: &Measured<T, N>) -> ([T; N], T) {
     let off = c.estimate_offset();
     match m {
-        Measured::Error(e) => (initial_estimate(c, *e), *e),
+        Measured::Error(e) => (c.initial_estimate(*e), *e),
         Measured::State(z) => {
             let mut z = *z;
             z.iter_mut().take(off).for_each(|i| *i = T::zero());
             (z, z.get(off).copied().unwrap_or_else(T::zero))
         }
     }
-}
-
-/// The first step's estimate `(e0, d2, ..., dn)` in slots `offset..N`
-/// (docs/design.md §3.4; the integral starts at 0).
-#[inline]
-pub(super) fn initial_estimate<T: Real, const N: usize>(c: &Config<T, N>, e: T) -> [T; N] {
-    let mut z = c.initial_derivatives().copied().unwrap_or([T::zero(); N]);
-    let off = c.estimate_offset();
-    z.iter_mut().take(off).for_each(|i| *i = T::zero());
-    if let Some(z1) = z.get_mut(off) {
-        *z1 = e;
-    }
-    z
 }

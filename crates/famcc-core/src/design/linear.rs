@@ -8,7 +8,7 @@
 //! `Controller::step` does (docs/design.md §3.2), plus the current sample's
 //! feedthrough with the first-order hold.
 
-use super::rules::manifold;
+use super::coefficients::manifold;
 use super::{Design, MAX_ORDER};
 use crate::differentiator::{prefilter_gain, HighGain};
 use crate::error::ConfigError;

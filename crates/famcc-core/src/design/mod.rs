@@ -26,6 +26,7 @@
 //! assert!(d.checks().iter().all(|c| c.level != Level::Fail));
 //! ```
 
+mod coefficients;
 mod findings;
 mod linear;
 mod requirements;

@@ -1,6 +1,7 @@
 //! The design rules proper: [`design`] picks every parameter from the
 //! requirements, widening the time-scale ratio until the sampled loop is stable.
 
+use super::coefficients::binomial;
 use super::{
     check, linear, Check, Design, Level, Requirements, Rule, ESTIMATE_FACTOR, ESTIMATE_ORDER, MAX_CHECKS,
     MAX_ORDER, MU_PER_SETTLE, NOISE_MU_STEP, NOISE_RATIO, NOISE_SIGMAS, PREFILTER_ORDER, PREFILTER_PER_MU,
@@ -9,20 +10,6 @@ use super::{
 use crate::differentiator::auto_discretization_at;
 use crate::error::ConfigError;
 use num_traits::Float as F;
-
-fn binomial(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-}
-
-/// The manifold coefficients of `s = (D + lambda)^(n_law - 1) z1`: slot `j`
-/// multiplies `z_(j+1)`.
-pub(super) fn manifold(n_law: usize, lambda: f64) -> [f64; MAX_ORDER] {
-    let mut c = [0.0; MAX_ORDER];
-    for (j, cj) in c.iter_mut().enumerate().take(n_law) {
-        *cj = binomial(n_law - 1, j) * F::powi(lambda, (n_law - 1 - j) as i32);
-    }
-    c
-}
 
 /// Sets `mu` (raised for noise, with the prefilter), the loop rate, `lambda` and `eps_s` for a
 /// time-scale ratio; returns the noise in `s` over `eps_s`.
