@@ -198,3 +198,76 @@ def test_the_binding_imports_no_python_module_of_the_package() -> None:
         if pattern.search(p.read_text())
     ]
     assert not hits, hits
+
+
+#: Why a function may import from the package: a heavy optional dependency loads only
+#: when used. Every function-local package import outside the CLI says which, on its line.
+DEFERRED = re.compile(r"#\s*deferred:.*\b(matplotlib|pandas|pyarrow|dask|mujoco)\b")
+MAX_DEFERRED = 6
+
+
+def function_local_imports(path: Path) -> list[tuple[int, str]]:
+    """``(line, source line)`` of every package import inside a function of ``path``."""
+    text = path.read_text()
+    lines = text.splitlines()
+    out = []
+    for fn in ast.walk(ast.parse(text, filename=str(path))):
+        if not isinstance(fn, ast.FunctionDef | ast.AsyncFunctionDef):
+            continue
+        for node in ast.walk(fn):
+            names = (
+                [a.name for a in node.names]
+                if isinstance(node, ast.Import)
+                else [node.module or ""]
+                if isinstance(node, ast.ImportFrom) and not node.level
+                else []
+            )
+            relative = isinstance(node, ast.ImportFrom) and node.level > 0
+            if relative or any(n == "famcc" or n.startswith("famcc.") for n in names):
+                out.append((node.lineno, lines[node.lineno - 1]))
+    return sorted(set(out))
+
+
+def test_function_local_package_imports_are_few_and_say_why() -> None:
+    found = [
+        (str(p.relative_to(ROOT)), n, line.strip())
+        for p in sorted(PKG.rglob("*.py"))
+        if p.name != "cli.py"  # each subcommand imports what it runs
+        for n, line in function_local_imports(p)
+    ]
+    unexplained = [f"{f}:{n}: {line}" for f, n, line in found if not DEFERRED.search(line)]
+    assert not unexplained, "import these at the top of the file:\n" + "\n".join(unexplained)
+    assert len(found) <= MAX_DEFERRED, found
+
+
+def test_the_walk_sees_a_function_level_upward_import_and_circle(tmp_path: Path) -> None:
+    known = {"famcc.sim", "famcc.tuning", "famcc.cli"}
+    sim = tmp_path / "sim.py"
+    sim.write_text(
+        "import numpy as np\n\n"
+        "def run():\n"
+        "    from famcc.tuning import tune  # an upward import, in a function\n"
+        "    if True:\n"
+        "        from famcc import cli\n"
+        "    return tune\n"
+    )
+    tuning = tmp_path / "tuning.py"
+    tuning.write_text("from famcc.sim import run\n")
+    g = {"famcc.sim": imports_of("famcc.sim", sim, known)}
+    g["famcc.tuning"] = imports_of("famcc.tuning", tuning, known)
+    assert g["famcc.sim"] == {"famcc.tuning", "famcc.cli"}
+    assert [f"{m} -> {t}" for m in g for t in sorted(g[m]) if layer_of(t) > layer_of(m)] == [
+        "famcc.sim -> famcc.cli",
+        "famcc.sim -> famcc.tuning",
+    ]
+    assert find_cycle(g) == ["famcc.sim", "famcc.tuning", "famcc.sim"]
+    lines = [line for _, line in function_local_imports(sim)]
+    assert len(lines) == 2 and not any(DEFERRED.search(x) for x in lines)
+    sim.write_text("def draw():\n    from famcc import plot  # deferred: matplotlib\n")
+    assert all(DEFERRED.search(x) for _, x in function_local_imports(sim))
+    sim.write_text(
+        "from typing import TYPE_CHECKING\n"
+        "if TYPE_CHECKING:\n"
+        "    from famcc.tuning import Design  # annotations only: no edge\n"
+    )
+    assert imports_of("famcc.sim", sim, known) == set()

@@ -35,6 +35,8 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core
+
 __all__ = ["ADRCPeer", "LinearADRC", "PIDPeer", "lmcc"]
 
 
@@ -290,8 +292,6 @@ def lmcc(
     ``mu`` is the high-gain differentiator's time constant (s), discretized as
     famcc picks for ``dt`` (:meth:`famcc.HighGain.discretization_for`).
     """
-    from famcc import _core
-
     stages = [_core.Linear(k) for _ in range(order - 1)] if order > 1 else [_core.Linear(k)]
     return _core.Controller(
         order,

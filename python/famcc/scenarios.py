@@ -34,6 +34,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from famcc import _core, plants, verdicts
+from famcc.signals import Sine
+from famcc.sim.simulate import simulate
 
 if TYPE_CHECKING:
     from famcc.sim import SimResult
@@ -167,9 +169,6 @@ class Scenario:
         saturation keeps returning sooner than ``T'``, the claim stays untested
         and :meth:`verdicts` says so.
         """
-        from famcc.signals import Sine
-        from famcc.sim import simulate
-
         horizon = self.t_end if t_end is None else t_end
         substeps = substeps_for(dt) if substeps is None else substeps
 

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from famcc.campaigns.chunk import run_chunk
+from famcc.progress import Progress
 
 if TYPE_CHECKING:
     from famcc.campaigns.plan import Campaign
@@ -34,8 +35,6 @@ def _dask_client(address: str) -> Any:
 
 def _progress(progress: Any, total: int, title: str) -> Any:
     if progress is True:
-        from famcc.progress import Progress
-
         return Progress(total, title)
     if progress in (False, None):
         return None

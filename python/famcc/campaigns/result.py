@@ -13,8 +13,10 @@ import numpy as np
 
 from famcc.campaigns.controller import _controller, _corollary_time
 from famcc.campaigns.noise import NoisySensor, noise_keys
+from famcc.campaigns.report import plot_distributions, plot_success, write
 from famcc.campaigns.stats import Rate, _pct, _rate
 from famcc.signals import Constant, Sine
+from famcc.sim.simulate import simulate
 from famcc.verdicts import Status, combine_codes
 
 if TYPE_CHECKING:
@@ -59,8 +61,6 @@ class Case:
 
     def simulate(self, **kwargs: Any) -> Any:
         """:func:`famcc.simulate` of this case (keywords go to it); a :class:`famcc.SimResult`."""
-        from famcc.sim import simulate
-
         kw = {"reference": self.reference, "u_limits": self.u_limits, "substeps": self.substeps}
         kw.update(kwargs)
         return simulate(self.plant, self.controller, self.t_end, **kw)
@@ -357,14 +357,10 @@ class CampaignResult:
     # -- figures -------------------------------------------------------------
     def plot_distributions(self) -> Figure:
         """Histograms of the settling time and of the max nominal ``|xi|``."""
-        from famcc.campaigns.report import plot_distributions
-
         return plot_distributions(self)
 
     def plot_success(self, bins: int = 10) -> Figure:
         """The success rate against each dispersed value, with Clopper-Pearson bars."""
-        from famcc.campaigns.report import plot_success
-
         return plot_success(self, bins)
 
     def write(self, out: str | Path, figures: bool = True, worst: int = 10) -> Path:
@@ -372,8 +368,6 @@ class CampaignResult:
 
         Returns the path of ``report.md``.
         """
-        from famcc.campaigns.report import write
-
         return write(self, out, figures, worst)
 
 

@@ -6,14 +6,13 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from famcc import _core, scenarios
 from famcc.campaigns.result import CampaignResult
 from famcc.campaigns.run import campaign
 from famcc.signals import Constant, Sine
 
 
 def _law(spec: Any, kind: str) -> Any:
-    from famcc import _core
-
     if not isinstance(spec, Mapping) or kind not in spec:
         raise ValueError(
             f"a {kind} must be a table with {kind} = NAME and its parameters, got {spec!r}"
@@ -30,8 +29,6 @@ def _law(spec: Any, kind: str) -> Any:
 
 
 def _controller_from_spec(spec: Mapping[str, Any], dt: float) -> Any:
-    from famcc import _core, scenarios
-
     kw = dict(spec)
     scenario = kw.pop("scenario", None)
     variant = kw.pop("variant", "code")

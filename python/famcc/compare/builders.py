@@ -6,15 +6,16 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
+from famcc import _core
+from famcc._common import DesignWarning
 from famcc.compare.spaces import _KINDS
+from famcc.peers import ADRCPeer, PIDPeer, lmcc
 
 
 @contextmanager
 def _design_warnings_silenced() -> Iterator[None]:
     """famcc's :class:`famcc.DesignWarning` ignored inside: the comparison measures its cost."""
     import warnings
-
-    from famcc._common import DesignWarning
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DesignWarning)
@@ -29,9 +30,6 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
     differentiator too fast for a 200 Hz loop) are silenced here: the comparison
     evaluates every candidate as tuned, and the measured runs show the cost.
     """
-    from famcc import _core
-    from famcc.peers import ADRCPeer, PIDPeer, lmcc
-
     n = int(p["order"])
     if kind == "pid":
         w, g = p["w"], p["gain"]

@@ -6,6 +6,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from famcc import plants
+from famcc.joints import two_link_arm
+
 
 @dataclass(frozen=True)
 class Case:
@@ -55,9 +58,6 @@ class Case:
 
 
 def _suite_cases() -> list[Case]:
-    from famcc import plants
-    from famcc.joints import two_link_arm
-
     motor, pend, quad, flex, arm = (
         plants.dc_motor(),
         plants.pendulum(),
@@ -227,9 +227,6 @@ def _case(name: str) -> Case:
 
 def make_plant(case: Case, factors: dict[str, float] | None = None) -> Any:
     """The case's plant, its parameters multiplied by ``factors`` (dispersion)."""
-    from famcc import plants
-    from famcc.joints import two_link_arm
-
     p = {k: v * (factors or {}).get(k, 1.0) for k, v in case.params.items()}
     if case.name in ("example-1", "example-2"):
         return plants.second_order("code", gain=p["gain"], amp=p["amp"])

@@ -8,9 +8,11 @@ from typing import Any
 
 import numpy as np
 
+from famcc import signals, sim
 from famcc.compare.builders import _design_warnings_silenced, build
 from famcc.compare.conditions import RK4_STEP, condition_of
 from famcc.compare.plants import Case, _Bare, make_plant
+from famcc.joints import simulate_joints
 
 #: The weight of TV(u) / H in the tuning objective, s.
 TV_WEIGHT = 0.01
@@ -33,9 +35,6 @@ def run(
     (bounds expanded with headroom) is silenced: the comparison measures that cost
     instead (see :func:`build`).
     """
-    from famcc import signals, sim
-    from famcc.joints import simulate_joints
-
     cond = condition_of(condition)
     dt = cond["dt"]
     limits = getattr(case, cond["limits"])

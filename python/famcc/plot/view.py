@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core
 from famcc._common import Signal
 from famcc.verdicts import STARTUP
 
@@ -75,8 +76,6 @@ class _View:
 
 def _laws_from(feedback: Any, skew: Any, order: int) -> list[Any]:
     """The callables ``h_m`` of the stages (None where the binding cannot build one)."""
-    from famcc import _core
-
     n = max(order - 1, 0)
     fbs = list(feedback) if isinstance(feedback, (list, tuple)) else [feedback] * n
     sks = list(skew) if isinstance(skew, (list, tuple)) else [skew] * n

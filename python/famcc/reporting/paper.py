@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from famcc import _core, scenarios
 from famcc.progress import Progress
 from famcc.reporting.notes import _accuracy_text, _episodes_text, _missing_notes, _saturation_note
 from famcc.reporting.records import _num, diverged, measure
@@ -73,8 +74,6 @@ def reproduce(
         name or None). No guarantee failed when every ``violations`` is empty;
         untested ones are listed in ``verdicts``.
     """
-    from famcc import scenarios
-
     names = list(scenarios.names() if not names else names)
     for name in names:
         if name not in scenarios.names():
@@ -116,7 +115,7 @@ def reproduce(
         rec = measure(sc, res, sim_s)
         rec["figure"] = None
         if figures:
-            from famcc import plot
+            from famcc import plot  # deferred: famcc.plot loads matplotlib
 
             panels = plot.scenario_panels(res.z.shape[1])
             _save_figure(rec, plot.scenario_figure(sc, res), out, name, plot.legend(panels))
@@ -144,8 +143,6 @@ def write_report(
     The paper's report is the general one (:func:`report`'s writer) with the
     paper's columns, notes and the command that regenerates it.
     """
-    from famcc import _core
-
     horizon = meta.get("t_end") or 10.0
     dt = float(meta.get("dt") or 1e-3)
     intro = (

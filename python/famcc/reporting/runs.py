@@ -6,17 +6,16 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from famcc import verdicts
+from famcc import _core, verdicts
 from famcc.reporting.notes import _accuracy_text, _missing_notes, _saturation_note
 from famcc.reporting.records import run_record
 from famcc.reporting.tables import _label
 from famcc.reporting.writer import _save_figure, _write
+from famcc.sim import SimResult
 
 
 def _labelled(results: Any) -> list[tuple[str, Any]]:
     """``[(label, SimResult), ...]`` from a result, a list, labelled pairs or a dict."""
-    from famcc.sim import SimResult
-
     if isinstance(results, SimResult):
         results = [results]
     items = list(results.items()) if isinstance(results, dict) else list(results)
@@ -113,8 +112,6 @@ def report(
     >>> "| k_u = 5 |" in text and "## Claims" in text
     True
     """
-    from famcc import _core
-
     runs = _labelled(results)
     if settle_time is not None and eps is None:
         raise ValueError("settle_time is a requirement on |z1| < eps: give eps too")
@@ -127,7 +124,7 @@ def report(
         rec = run_record(label, res, eps=eps, found=found)
         rec["figure"] = None
         if figures:
-            from famcc import plot
+            from famcc import plot  # deferred: famcc.plot loads matplotlib
 
             chosen = plot.panels_of(res, panels)
             fig = plot.figure(res, chosen, eps=eps, title=f"{label}: {res.controller_description}")

@@ -7,12 +7,13 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from famcc import _core
 from famcc.reporting.tables import _COLUMNS, _label, _table, _verdict_lines, headline
 
 
 def _save_figure(rec: dict[str, Any], fig: Any, out: Path, stem: str, legend: str) -> None:
     """Writes ``fig`` as ``out/stem.png`` and notes the file and its legend in ``rec``."""
-    from famcc import plot
+    from famcc import plot  # deferred: famcc.plot loads matplotlib
 
     fname = f"{stem}.png"
     plot.save(fig, out / fname)
@@ -33,8 +34,6 @@ def _write(
     columns_extra: str = "",
 ) -> tuple[Path, Path]:
     """The one writer of ``report.md`` and ``summary.json`` (reproduce and report)."""
-    from famcc import _core
-
     out.mkdir(parents=True, exist_ok=True)
     failed = sum(r["verdict_counts"]["failed"] for r in records)
     untested = sum(r["verdict_counts"]["untested"] for r in records)

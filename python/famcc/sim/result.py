@@ -372,7 +372,7 @@ class SimResult:
         --------
         famcc.plot.figure : the same figure from a function; docs/figures.md explains it.
         """
-        from famcc.plot import figure  # matplotlib loads on the first figure
+        from famcc.plot import figure  # deferred: famcc.plot loads matplotlib
 
         return figure(self, panels, window=window, eps=eps, title=title)
 

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from famcc import scenarios
 from famcc.sweep.answer import _answer, _compare_table
 from famcc.sweep.run import (
     CRITERIA,
@@ -29,8 +30,6 @@ def write_sweep_report(
     records: Sequence[dict[str, Any]], out: str | Path, meta: dict[str, Any], figure: bool = True
 ) -> Path:
     """Writes ``sweep.md``, ``sweep.json`` and ``sweep.png`` into ``out``; returns sweep.md."""
-    from famcc import scenarios
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     names = list(dict.fromkeys(r["scenario"] for r in records))
@@ -60,7 +59,7 @@ def write_sweep_report(
         + "\n"
     )
     if figure:
-        from famcc import plot
+        from famcc import plot  # deferred: famcc.plot loads matplotlib
 
         bounds = {}
         for n in dict.fromkeys(r["scenario"] for r in records):

@@ -10,7 +10,9 @@ from typing import Any
 
 import numpy as np
 
+from famcc import _core, scenarios
 from famcc.scenarios import substeps_for
+from famcc.signals import Sine
 from famcc.verdicts import STARTUP, Status
 
 #: Sample rates of the sweep, Hz.
@@ -31,8 +33,6 @@ CRITERIA = (
 
 def initial_error(scenario: Any) -> np.ndarray:
     """The scenario's true initial error vector ``z(0)`` (reference ``y_d = sin t``)."""
-    from famcc.signals import Sine
-
     ref = Sine()
     plant = scenario.plant
     y = np.asarray(plant.output_derivatives(0.0, np.asarray(plant.x0, dtype=float)), dtype=float)
@@ -54,8 +54,6 @@ def estimate_limits(scenario: Any, factor: float = LIMIT_FACTOR) -> list[float]:
 def _differentiator(
     scenario: Any, discretization: str, limited: bool, factor: float = LIMIT_FACTOR
 ) -> Any:
-    from famcc import _core
-
     base = scenario.controller_kwargs["differentiator"]
     limits = estimate_limits(scenario, factor) if limited else None
     kind: Any = discretization
@@ -72,8 +70,6 @@ def run_one(
     limit_factor: float = LIMIT_FACTOR,
 ) -> dict[str, Any]:
     """One sweep point; returns a JSON-friendly record (never raises for a diverging loop)."""
-    from famcc import scenarios
-
     sc = scenarios.paper(name, variant)
     dt = 1.0 / rate_hz
     rec: dict[str, Any] = {
@@ -216,8 +212,6 @@ def sweep(
     ``progress`` is a :class:`famcc.reporting.Progress` or None.
     """
     import os
-
-    from famcc import scenarios
 
     names = list(names or scenarios.names())
     tasks = [

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from famcc import _core
 from famcc._common import DesignWarning
 from famcc.tuning.findings import _RULES, Finding, _message
 
@@ -92,8 +93,6 @@ class Design:
 
     def controller_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :class:`famcc.Controller` for this design."""
-        from famcc import _core
-
         p, r = self.parameters, self.requirements
         n = r["order"]
         stages = p["law_order"] - 1
@@ -141,8 +140,6 @@ class Design:
             which is the way taken for ``order``, ``constraint`` or
             ``integral`` overrides and when there is no spec.
         """
-        from famcc import _core
-
         if self.spec is not None and not _SHAPE_KEYS.intersection(overrides):
             return self.spec.replace(**overrides).build()
         kw = self.controller_kwargs()
@@ -281,8 +278,6 @@ def design(
     famcc.ConfigError
         For an invalid requirement (the message names it).
     """
-    from famcc import _core
-
     lo, hi = (float(v) for v in u_limits)
     raw = _core.design_rules(
         int(order),

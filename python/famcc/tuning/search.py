@@ -7,7 +7,10 @@ import warnings
 from collections.abc import Sequence
 from typing import Any
 
+from famcc import _core, sim
 from famcc._common import DesignWarning
+from famcc.progress import Progress
+from famcc.signals import Constant, reference_table
 from famcc.tuning.assess import assess
 from famcc.tuning.rules import Design, Finding, Trial, design
 
@@ -146,10 +149,6 @@ def tune(
         candidate met every requirement.
     """
     import numpy as np
-
-    from famcc import _core, sim
-    from famcc.progress import Progress
-    from famcc.signals import Constant
 
     lo, hi = (float(v) for v in u_limits)
     horizon = float(t_end) if t_end is not None else 2.0 * float(settle_time) + 1.0
@@ -317,8 +316,6 @@ def _max_error(plant: Any, reference: Any, order: int, horizon: float) -> float:
     """The largest ``|y(0) - y_d(t)|`` over the horizon: the error if the plant stood
     still, a bound on what the loop must recover from (floored at a tiny value)."""
     import numpy as np
-
-    from famcc.signals import reference_table
 
     y0 = float(np.asarray(plant.x0, dtype=float)[0])
     table, _ = reference_table(reference, order, np.linspace(0.0, horizon, 201))
