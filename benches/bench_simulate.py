@@ -2,8 +2,10 @@
 
 Times the README's quick-start simulation (the paper's example 1: 10 s at
 1 kHz, the default substeps, the diagnostics recorded, ``y_d = sin t``, limits
-``[-2.5, 3]``) and three more workloads -- example 3 saturated, the DC motor
-(a plant written in Python) and a 200-case campaign of example 1 -- with the
+``[-2.5, 3]``) and more workloads -- example 3 saturated, the DC motor (a plant
+written in Python), a 200-case campaign of example 1, example 1's 10^4 bare
+``step`` calls (``steps``: what ``ex1`` costs over them), a paper scenario's
+``run()``, ``famcc.tune`` of example 1 and ``famcc reproduce`` -- with the
 working tree's famcc and with a baseline commit's, alternating A and B runs
 so that the machine's load drifts out of the ratios. Also counts the calls
 into the compiled extension per simulated sample (the loop's crossings).
@@ -62,6 +64,27 @@ def campaign():
                           u_limits=(-2.5, 3.0), dispersion={"gain": Uniform(0.8, 1.2)},
                           executor="serial", progress=False)
 
+def steps():
+    # the bare cost of ex1's 10^4 samples: the controller alone, no plant, no recording
+    ctrl = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.5), constraint="lateral",
+                            eps=0.1, k_u=5.0)
+    step = ctrl.step
+    for k in range(10001):
+        step(0.01 * (k % 7) - 0.03)
+
+def scenario():
+    return famcc.scenarios.paper("finite-time").run()
+
+def tune():
+    return famcc.tune(famcc.plants.second_order("code"), dt=1e-3, u_limits=(-2.5, 3.0),
+                      eps=0.1, settle_time=3.0, reference=famcc.Sine(), progress=False)
+
+def reproduce():
+    import contextlib, io, tempfile
+    from famcc.cli import main
+    with tempfile.TemporaryDirectory() as d, contextlib.redirect_stdout(io.StringIO()):
+        main(["reproduce", "--out", d])
+
 name, repeat = sys.argv[1], int(sys.argv[2])
 fn = globals()[name]
 fn()  # warm up
@@ -81,7 +104,7 @@ print(json.dumps({"times": times, "crossings_per_sample": crossings,
                   "version": famcc.__file__}))
 """
 
-WORKLOADS = ("ex1", "ex3", "motor", "campaign")
+WORKLOADS = ("ex1", "ex3", "motor", "campaign", "steps", "scenario", "tune", "reproduce")
 
 
 def baseline_python(rev: str) -> Path:
@@ -127,11 +150,12 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=7)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--json")
+    ap.add_argument("--only", nargs="+", choices=WORKLOADS, help="these workloads only")
     args = ap.parse_args()
     base = str(baseline_python(args.baseline))
     here = sys.executable
     report = {}
-    for name in WORKLOADS:
+    for name in args.only or WORKLOADS:
         a, b, ratios, cross = [], [], [], None
         for _ in range(args.rounds):
             ra = run(base, name, args.repeat)

@@ -28,8 +28,9 @@ import numpy as np
 from famcc.plants.base import is_real
 from famcc.signals import reference_table, source
 from famcc.sim import engine
+from famcc.sim.checks import check_limits, check_substeps, describe_controller_of
 from famcc.sim.result import SimResult
-from famcc.sim.simulate import SUBSTEPS, check_limits, check_substeps, describe_controller_of
+from famcc.sim.simulate import SUBSTEPS
 
 __all__ = ["simulate_joints"]
 

@@ -27,58 +27,32 @@ True
 
 from __future__ import annotations
 
-import math
 import warnings
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from famcc._common import DefaultReferenceWarning, Signal
-from famcc.plants.base import is_real
-from famcc.signals import describe_reference, reference_table, sampled, source
+from famcc._common import DefaultReferenceWarning
+from famcc.signals import describe_reference
 from famcc.sim import engine
+from famcc.sim.checks import Setup, check_limits, check_run, check_substeps, describe_controller_of
 from famcc.sim.post import true_errors
 from famcc.sim.result import SimResult
 
-__all__ = ["SUBSTEPS", "check_limits", "describe_controller_of", "simulate"]
+# check_limits, check_substeps and describe_controller_of live in famcc.sim.checks;
+# importing them from here still works.
+__all__ = [
+    "SUBSTEPS",
+    "check_limits",
+    "check_substeps",
+    "describe_controller_of",
+    "simulate",
+]
 
 #: RK4 steps per sample period of every simulation (simulate, joints, campaigns).
 SUBSTEPS = 10
-
-
-def check_limits(u_limits: Any, label: str = "u_limits") -> tuple[float, float] | None:
-    """``u_limits`` as ``(lo, hi)`` with ``lo < hi``, or None; ValueError otherwise."""
-    if u_limits is None:
-        return None
-    try:
-        lo, hi = (float(v) for v in u_limits)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{label} must be None or a pair (lo, hi), got {u_limits!r}") from exc
-    if not (lo < hi) or math.isnan(lo) or math.isnan(hi):
-        raise ValueError(f"{label} must satisfy lo < hi, got {u_limits!r}")
-    return (lo, hi)
-
-
-def check_substeps(substeps: Any) -> int:
-    """``substeps`` when it is an integer >= 1, else ValueError."""
-    if not isinstance(substeps, (int, np.integer)) or isinstance(substeps, bool) or substeps < 1:
-        raise ValueError(f"substeps must be an integer >= 1, got {substeps!r}")
-    return int(substeps)
-
-
-def describe_controller_of(controller: Any) -> tuple[str, dict[str, Any] | None]:
-    """``(repr, config)`` of the controller at the start of the run (config may be None)."""
-    text = repr(controller)
-    config = getattr(controller, "config", None)
-    cfg = None
-    if callable(config):
-        try:
-            value = config()
-        except (TypeError, ValueError, AttributeError, RuntimeError):
-            value = None  # a duck-typed controller's config(): then no configuration
-        cfg = dict(value) if isinstance(value, dict) else None
-    return text, cfg
 
 
 def simulate(
@@ -205,29 +179,21 @@ def simulate(
     >>> res.output, res.neg_f_over_g_error
     (Signal(name='position', unit='m'), 'not computed: simulate(record=False)')
     """
-    # -- validate -------------------------------------------------------------
-    for attr in ("dt", "order", "step"):
-        if not hasattr(controller, attr):
-            raise ValueError(f"controller must have an attribute {attr!r}")
-    dt = controller.dt
-    if not is_real(dt) or not (math.isfinite(dt) and dt > 0):
-        raise ValueError(f"controller.dt must be a finite number > 0, got {dt!r}")
-    dt = float(dt)
-    n = getattr(plant, "order", None)
-    if not isinstance(n, (int, np.integer)) or n < 1 or not hasattr(plant, "rhs"):
-        raise ValueError("plant must have an integer order >= 1 and an rhs(t, x, u) method")
-    n = int(n)
-    if controller.order != n:
-        raise ValueError(f"controller.order ({controller.order}) must equal the plant order ({n})")
-    if record and not hasattr(controller, "diagnostics"):
-        raise ValueError("controller has no attribute 'diagnostics'; pass record=False")
-    if not is_real(t_end) or not (math.isfinite(t_end) and t_end > 0):
-        raise ValueError(f"t_end must be a finite number > 0, got {t_end!r}")
-    steps = round(t_end / dt)
-    if steps < 1:
-        raise ValueError(f"t_end ({t_end}) must be at least half a sample period dt ({dt})")
-    substeps = check_substeps(substeps)
-    limits = check_limits(u_limits)
+    setup = check_run(
+        plant,
+        controller,
+        t_end,
+        reference,
+        u_limits,
+        substeps,
+        record,
+        output,
+        input,
+        noise,
+        seed,
+        disturbance,
+        diverge_at,
+    )
     if reference is None:
         warnings.warn(
             "simulate() was given no reference, so it tracks the paper's y_d = sin t; pass "
@@ -236,94 +202,93 @@ def simulate(
             DefaultReferenceWarning,
             stacklevel=2,
         )
-    K = steps + 1
-    t_arr = np.arange(K) * dt
-    table, ref_order = reference_table(reference, n, t_arr)
-    noise_fn = source("noise", noise, seed)
-    dist_fn = source("disturbance", disturbance, None)
-    if diverge_at is not None and not (
-        is_real(diverge_at) and math.isfinite(diverge_at) and diverge_at > 0
-    ):
-        raise ValueError(f"diverge_at must be None or a finite number > 0, got {diverge_at!r}")
-    x0 = np.array(plant.x0, dtype=np.float64).reshape(-1)
-    if diverge_at is not None:
-        e0 = abs(float(x0[0]) - float(table[0, 0]))
-        if not e0 <= diverge_at:
-            raise ValueError(
-                f"diverge_at ({diverge_at}) must be at least the initial error |z1(0)| ({e0:.6g})"
-            )
-    out_signal = Signal.of(output if output is not None else getattr(plant, "output", None), "y")
-    in_signal = Signal.of(input if input is not None else getattr(plant, "input", None), "u")
-    ctrl_repr, ctrl_config = describe_controller_of(controller)
-    if x0.shape != (n,) or not np.all(np.isfinite(x0)):
-        raise ValueError(f"plant.x0 must be {n} finite numbers, got {x0.tolist()}")
+    ran = _run(plant, controller, setup, record)
+    return _result(plant, setup, ran, describe_reference(reference), record)
 
-    # -- run --------------------------------------------------------------------
-    noise_k = sampled(noise_fn, t_arr)
-    dist_k = sampled(dist_fn, t_arr)
+
+@dataclass
+class _Ran:
+    """What the loop left: its recorded blocks, the samples kept (all but those
+    after a stop) and the engine (for the controller's counters)."""
+
+    blocks: list[engine.Block]
+    kept: int
+    stop: tuple[int, str] | None
+    engine: engine.Engine
+
+    def column(self, name: str) -> np.ndarray:
+        """A recorded column of the one lane and channel, over the kept samples."""
+        return np.concatenate([getattr(b, name)[:, 0, 0] for b in self.blocks])[: self.kept]
+
+
+def _run(plant: Any, controller: Any, s: Setup, record: bool) -> _Ran:
+    """The engine's one sample-and-hold loop over the whole run, block by block; a
+    stop without ``diverge_at`` raises where it happened."""
     run = engine.start(
         engine.plant_of(plant),
         [controller],
-        dt=dt,
-        samples=K,
-        substeps=substeps,
-        x0=x0[:, None],
+        dt=s.dt,
+        samples=s.samples,
+        substeps=s.substeps,
+        x0=s.x0[:, None],
         outputs=[0],
-        limits=[limits],
-        diverge_at=None if diverge_at is None else float(diverge_at),
+        limits=[s.limits],
+        diverge_at=s.diverge_at,
         detail="full" if record else "none",
     )
     with np.errstate(over="ignore", invalid="ignore"):
         blocks = []
         while not run.done:
             k0 = run.sim.sample
-            k1 = min(K, k0 + run.block_rows)
+            k1 = min(s.samples, k0 + run.block_rows)
             blk = run.block(
-                table[k0:k1, 0],
-                None if noise_k is None else noise_k[k0:k1],
-                None if dist_k is None else dist_k[k0:k1],
+                s.table[k0:k1, 0],
+                None if s.noise is None else s.noise[k0:k1],
+                None if s.disturbance is None else s.disturbance[k0:k1],
             )
             blocks.append(blk)
             if blk.plant_error is not None:
                 break
     stop = run.stops[0]
-    kept = K if stop is None else stop[0]
-    plant_error = blocks[-1].plant_error if blocks else None
-    if stop is not None and diverge_at is None:
-        _raise_unstopped(stop, plant_error, t_arr, dt, run.state[:, 0])
+    if stop is not None and s.diverge_at is None:
+        plant_error = blocks[-1].plant_error if blocks else None
+        _raise_unstopped(stop, plant_error, s.t, s.dt, run.state[:, 0])
+    return _Ran(blocks, s.samples if stop is None else stop[0], stop, run)
 
-    def col(name: str) -> np.ndarray:
-        return np.concatenate([getattr(b, name)[:, 0, 0] for b in blocks])[:kept]
 
-    x_arr = np.concatenate([b.x[:, :, 0] for b in blocks if b.x is not None])[:kept]
-    partial = stop is not None and stop[1] in ("diverged", "non-finite-output")
+def _result(plant: Any, s: Setup, ran: _Ran, reference_repr: str, record: bool) -> SimResult:
+    """The :class:`SimResult` of a run: the recorded columns, the true error vector
+    (and ``-F/G``) from the plant, the diagnostics when recorded."""
+    kept, n = ran.kept, s.order
+    x_arr = np.concatenate([b.x[:, :, 0] for b in ran.blocks if b.x is not None])[:kept]
     result = SimResult(
-        t=t_arr[:kept],
+        t=s.t[:kept],
         y=x_arr[:, 0].copy(),
-        y_d=table[:kept, 0].copy(),
+        y_d=s.table[:kept, 0].copy(),
         x=x_arr,
         z=np.full((kept, n), np.nan),
-        v=col("v"),
-        u=col("u"),
-        dt=dt,
-        u_limits=limits,
-        output=out_signal,
-        input=in_signal,
-        controller_repr=ctrl_repr,
-        controller_config=ctrl_config,
-        reference_repr=describe_reference(reference),
+        v=ran.column("v"),
+        u=ran.column("u"),
+        dt=s.dt,
+        u_limits=s.limits,
+        output=s.output,
+        input=s.input,
+        controller_repr=s.controller_repr,
+        controller_config=s.controller_config,
+        reference_repr=reference_repr,
     )
-    result.z[:, 0] = col("e")
+    result.z[:, 0] = ran.column("e")
+    partial = ran.stop is not None and ran.stop[1] in ("diverged", "non-finite-output")
     full = kept - 1 if partial else kept  # the stop row has no step (diverged) or no output
-    true_errors(result, plant, table, ref_order, full, record)
+    true_errors(result, plant, s.table, s.ref_order, full, record)
     if record:
-        _diagnostics(result, blocks, kept, n, run)
-    if noise_k is not None:
-        result.z1_measured = col("e_measured")
-    if dist_k is not None:
-        result.disturbance = col("d")
-    if stop is not None:
-        result.diverged_at = float(t_arr[kept - 1])
+        _diagnostics(result, ran)
+    if s.noise is not None:
+        result.z1_measured = ran.column("e_measured")
+    if s.disturbance is not None:
+        result.disturbance = ran.column("d")
+    if ran.stop is not None:
+        result.diverged_at = float(s.t[kept - 1])
     return result
 
 
@@ -347,8 +312,9 @@ def _raise_unstopped(
     )
 
 
-def _diagnostics(result: SimResult, blocks: list[Any], kept: int, n: int, run: Any) -> None:
+def _diagnostics(result: SimResult, ran: _Ran) -> None:
     """The controller's recorded diagnostics into ``result``."""
+    blocks, kept, n = ran.blocks, ran.kept, result.z.shape[1]
 
     def diag(name: str) -> np.ndarray:
         return np.concatenate([b.diag[name][:, 0, 0] for b in blocks])[:kept]
@@ -363,7 +329,7 @@ def _diagnostics(result: SimResult, blocks: list[Any], kept: int, n: int, run: A
     # Controllers without these diagnostics (duck-typed ones) leave them unknown.
     result.xi_nominal = None if np.all(np.isnan(xin)) else xin
     result.expansion = None if np.all(np.isnan(fac)) else fac
-    counts = run.sim.counts()[0]
+    counts = ran.engine.sim.counts()[0]
     if counts is not None:
         result.clamp_count = int(counts[0])
         result.unsaturated_expansions = None if counts[1] is None else int(counts[1])
