@@ -60,6 +60,7 @@
 //! | `integral` | integral action ([`ConfigBuilder::integral`]) |
 //! | `one-off-period` | steps at another period than `dt` ([`Controller::step_dt`]), and restoring a state taken at one; without it the clock never leaves `T` (no soft-float `f64` on a single-precision FPU) |
 //! | `first-order-hold` | the differentiator's [`Discretization::Foh`] (its feedthrough in the step, and its restart, which starts a clock run in `f64`) |
+//! | `observer` | the extended high-gain differentiator `ExtendedHighGain` (disturbance estimation, docs/observer.md; not yet used by the controller) |
 #![no_std]
 #![forbid(unsafe_code)]
 #![cfg_attr(
@@ -99,6 +100,8 @@ pub use controller::{
     probe_error, probe_errors, Controller, Diagnostics, Health, Snapshot, PROBE_COUNT, PROBE_LIMIT,
     PROBE_PER_DECADE, RECOVERY_SAMPLES, SNAPSHOT_FIELDS,
 };
+#[cfg(feature = "observer")]
+pub use differentiator::{DiscreteExtended, ExtendedHighGain};
 pub use differentiator::{DiscreteHgd, Discretization, HighGain};
 pub use envelope::{Envelope, Latch};
 pub use error::{ConfigError, StepError};

@@ -49,6 +49,8 @@
 mod defaults;
 mod discretize;
 mod expm;
+#[cfg(feature = "observer")]
+mod extended;
 mod high_gain;
 mod linalg;
 mod recursion;
@@ -57,6 +59,8 @@ pub use defaults::{
     auto_discretization, auto_discretization_at, auto_mu, paper_coefficients, EXACT_DT_PER_MU,
     FOH_MIN_MU_PER_DT, FOH_SAMPLE_DELAY, PAPER_MU, PAPER_MU_PER_DT, SAMPLE_DELAY,
 };
+#[cfg(feature = "observer")]
+pub use extended::{DiscreteExtended, ExtendedHighGain};
 pub(crate) use high_gain::prefilter_gain;
 pub use high_gain::{Discretization, HighGain};
 pub use linalg::spectral_radius;

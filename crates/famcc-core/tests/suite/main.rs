@@ -13,6 +13,8 @@ mod closed_loop_random;
 mod design;
 mod differentiator;
 mod estimate_saturation;
+#[cfg(feature = "observer")]
+mod extended;
 mod f32_vs_f64;
 mod fast_path;
 mod fuzz;
