@@ -60,7 +60,7 @@
 //! | `integral` | integral action ([`ConfigBuilder::integral`]) |
 //! | `one-off-period` | steps at another period than `dt` ([`Controller::step_dt`]), and restoring a state taken at one; without it the clock never leaves `T` (no soft-float `f64` on a single-precision FPU) |
 //! | `first-order-hold` | the differentiator's [`Discretization::Foh`] (its feedthrough in the step, and its restart, which starts a clock run in `f64`) |
-//! | `observer` | the extended high-gain differentiator `ExtendedHighGain` (disturbance estimation, docs/observer.md; not yet used by the controller) |
+//! | `observer` | the extended high-gain differentiator `ExtendedHighGain` and the law on it with the lumped term cancelled, `ObservedController` (disturbance estimation, docs/observer.md) |
 #![no_std]
 #![forbid(unsafe_code)]
 #![cfg_attr(
@@ -91,6 +91,8 @@ mod float;
 pub mod gamma;
 pub mod jet;
 pub mod manifold;
+#[cfg(feature = "observer")]
+pub mod observed;
 pub mod skew;
 pub mod transition;
 
@@ -109,5 +111,7 @@ pub use feedback::Feedback;
 pub use float::Real;
 pub use gamma::Gamma;
 pub use jet::Jet;
+#[cfg(feature = "observer")]
+pub use observed::ObservedController;
 pub use skew::{Skew, SkewKind, SkewedLaw};
 pub use transition::Transition;

@@ -97,7 +97,7 @@ pub(super) fn discretize<T: Real, const N: usize>(
 /// series `D0 = sum_k tau^(k+1) M0^k a / (k+2)!` (its terms fall by at least
 /// `1/(k+3)` each) is summed until a term no longer changes the sum. The
 /// unused block (`m < N`) is the identity in the solve, with a zero right side.
-fn ramp_response<const N: usize>(
+pub(super) fn ramp_response<const N: usize>(
     m0: &Mat<N>,
     a: &[f64; N],
     zoh: &[f64; N],

@@ -16,13 +16,17 @@
 //!
 //! so its error obeys `s^(n+1) + a_1 s^n + ... + a_(n+1)` scaled by `1/mu`,
 //! which must be Hurwitz. The input `u` is held over each sample period by
-//! the actuator, so the zero-order hold is exact for it; the measurement is
-//! held too, as [`super::Discretization::Exact`] holds it. The recursion
+//! the actuator, so the zero-order hold is exact for it. The recursion
 //!
 //! ```text
 //! (Zhat, Lhat)_(k+1) = Phi (Zhat, Lhat)_k + Gamma_e e_k + Gamma_u u_k
 //! ```
 //!
+//! (the measurement held, [`Discretization::Exact`]) or, with the first-order
+//! hold ([`Discretization::Foh`]: the measurement is the straight line through
+//! the samples), `V_(k+1)` of the same recursion and the estimate
+//! `V_(k+1) + D (e_(k+1) - e_k)` with the ramp's feedthrough `D`, as the plain
+//! differentiator's first-order hold. Either
 //! is computed once, in `f64`, in the balanced coordinates `w_i = mu^(i-1)
 //! xhat_i` of the plain differentiator (where every entry is `O(a_i)`), and
 //! rounded once to `T`. The extended state sits beside the order-`N` arrays
@@ -42,11 +46,12 @@
 //! assert!((l - 3.0).abs() < 1e-2);
 //! ```
 
+use super::discretize::ramp_response;
 use super::expm::expm_zoh;
 use super::linalg::{routh_hurwitz, Mat};
 use crate::config::MAX_ORDER;
 use crate::error::{positive, scale};
-use crate::{ConfigError, Real};
+use crate::{ConfigError, Discretization, Real};
 
 /// The size of the `f64` arrays the extended system is computed in: the
 /// largest order plus the extended state (zero-padded: the padded block is
@@ -67,12 +72,32 @@ pub struct ExtendedHighGain<T, const N: usize> {
     pub a_ext: T,
     /// The nominal input gain `b0` (nonzero; its sign is the control direction).
     pub b0: T,
+    /// How the measurement is sampled: [`Discretization::Exact`] (held) or
+    /// [`Discretization::Foh`] (the straight line through the samples); the
+    /// input is always held, as the actuator holds it.
+    pub discretization: Discretization,
 }
 
 impl<T: Real, const N: usize> ExtendedHighGain<T, N> {
-    /// The parameters as given (checked by [`ExtendedHighGain::validate`]).
+    /// The parameters as given (checked by [`ExtendedHighGain::validate`]),
+    /// the measurement held ([`Discretization::Exact`]).
     pub fn new(mu: T, a: [T; N], a_ext: T, b0: T) -> Self {
-        Self { mu, a, a_ext, b0 }
+        Self {
+            mu,
+            a,
+            a_ext,
+            b0,
+            discretization: Discretization::Exact,
+        }
+    }
+
+    /// The same observer with the measurement sampled by `discretization`
+    /// (`Exact` or `Foh`).
+    pub fn with_discretization(self, discretization: Discretization) -> Self {
+        Self {
+            discretization,
+            ..self
+        }
     }
 
     /// The default coefficients for `mu`: every pole of the error dynamics at
@@ -92,7 +117,7 @@ impl<T: Real, const N: usize> ExtendedHighGain<T, N> {
             *ai = T::from_f64(c);
         }
         let a_ext = T::from_f64(num_traits::Float::powi(2.0_f64, (N + 1) as i32));
-        Self { mu, a, a_ext, b0 }
+        Self::new(mu, a, a_ext, b0)
     }
 
     /// Checks the parameters: order `1 <= N <= MAX_ORDER`, `mu` finite and
@@ -137,7 +162,17 @@ impl<T: Real, const N: usize> ExtendedHighGain<T, N> {
                 "must be finite and nonzero (the nominal input gain; negative for a negative control direction)",
             ));
         }
-        scale(self.b0.abs(), "b0")
+        scale(self.b0.abs(), "b0")?;
+        match self.discretization {
+            Discretization::Exact | Discretization::Foh => {}
+            Discretization::Euler | Discretization::Tustin => {
+                return Err(ConfigError::new(
+                    "observer_discretization",
+                    "must be exact (the measurement held) or foh (the straight line through the samples)",
+                ))
+            }
+        }
+        crate::compiled::discretization(self.discretization)
     }
 
     /// The recursion for the sample period `dt` (seconds), zero-order hold on
@@ -182,8 +217,12 @@ impl<T: Real, const N: usize> ExtendedHighGain<T, N> {
             *x = 1.0;
         }
         let (_, gu0) = expm_zoh(&m0, &unit, tau).ok_or_else(singular)?;
+        let fe0 = match self.discretization {
+            Discretization::Foh => ramp_response(&m0, &a, &ge0, tau, m).ok_or_else(singular)?,
+            _ => [0.0; EXT],
+        };
         let b0 = self.b0.to_f64_lossless();
-        unbalance(&phi0, &ge0, &gu0, mu, b0).ok_or(ConfigError::new(
+        unbalance(&phi0, [&ge0, &fe0, &gu0], mu, b0).ok_or(ConfigError::new(
             "observer_mu",
             "is so small against dt that the observer's recursion does not fit the float type: raise mu",
         ))
@@ -210,11 +249,18 @@ pub struct DiscreteExtended<T, const N: usize> {
     pub gamma_u: [T; N],
     /// `Lhat <- u` (with `b0`).
     pub gamma_u_l: T,
+    /// `Zhat <-` the measurement's increment `e_(k+1) - e_k` (the first-order
+    /// hold's feedthrough; zero when the measurement is held).
+    pub feed_e: [T; N],
+    /// `Lhat <-` the increment.
+    pub feed_e_l: T,
 }
 
 impl<T: Real, const N: usize> DiscreteExtended<T, N> {
     /// One sample: `(Zhat, Lhat)_(k+1)` from `(Zhat, Lhat)_k`, the sample
-    /// `e_k` and the input `u_k` held until the next sample.
+    /// `e_k` and the input `u_k` held until the next sample; with the
+    /// first-order hold, the part `V_(k+1)` that does not depend on the next
+    /// sample ([`DiscreteExtended::current`] adds it).
     #[inline]
     pub fn advance(&self, z: &[T; N], l: T, e: T, u: T) -> ([T; N], T) {
         let mut out = [T::zero(); N];
@@ -237,16 +283,38 @@ impl<T: Real, const N: usize> DiscreteExtended<T, N> {
         }
         (out, l_next)
     }
+
+    /// The estimate at a sample from its part `V` of [`DiscreteExtended::advance`]
+    /// and the measurement's increment `de = e_(k+1) - e_k`: `V + D de` (`V`
+    /// itself when the measurement is held, `D = 0`).
+    ///
+    /// ```
+    /// use famcc_core::{Discretization, ExtendedHighGain};
+    /// let obs = ExtendedHighGain::<f64, 2>::binomial(0.01, 1.0);
+    /// let foh = obs.with_discretization(Discretization::Foh).discretize(1e-3).unwrap();
+    /// let held = obs.discretize(1e-3).unwrap();
+    /// assert_eq!((held.phi, held.gamma_e), (foh.phi, foh.gamma_e)); // the same held part
+    /// assert_eq!(held.current(&[1.0, 2.0], 3.0, 0.5), ([1.0, 2.0], 3.0));
+    /// assert!(foh.current(&[1.0, 2.0], 3.0, 0.5).0[1] > 2.0); // the increment moves zhat_2
+    /// ```
+    #[inline]
+    pub fn current(&self, v: &[T; N], vl: T, de: T) -> ([T; N], T) {
+        let mut out = *v;
+        for (o, d) in out.iter_mut().zip(self.feed_e.iter()) {
+            *o = *o + *d * de;
+        }
+        (out, vl + self.feed_e_l * de)
+    }
 }
 
 /// Back from balanced coordinates (`x_i = w_i mu^-i`, 0-based `i <= N`):
-/// `Phi_ij = Phi0_ij mu^(j-i)`, `Gamma_e_i = Gamma0_i mu^-i`, `Gamma_u_i =
+/// `Phi_ij = Phi0_ij mu^(j-i)`, `Gamma_e_i = Gamma0_i mu^-i` (and so the
+/// feedthrough `D_i = D0_i mu^-i`), `Gamma_u_i =
 /// Gu0_i b0 mu^(N-i)`, rounded to `T`; `None` when an entry is not finite in
 /// `T`.
 fn unbalance<T: Real, const N: usize>(
     phi0: &Mat<EXT>,
-    ge0: &[f64; EXT],
-    gu0: &[f64; EXT],
+    [ge0, fe0, gu0]: [&[f64; EXT]; 3],
     mu: f64,
     b0: f64,
 ) -> Option<DiscreteExtended<T, N>> {
@@ -282,19 +350,23 @@ fn unbalance<T: Real, const N: usize>(
         gamma_e_l: cast(g(ge0, n, 1.0))?,
         gamma_u: [T::zero(); N],
         gamma_u_l: cast(g(gu0, n, u_scale))?,
+        feed_e: [T::zero(); N],
+        feed_e_l: cast(g(fe0, n, 1.0))?,
     };
     for (i, row) in d.phi.iter_mut().enumerate() {
         for (j, p) in row.iter_mut().enumerate() {
             *p = cast(at(i, j))?;
         }
     }
-    for (i, ((zl, lz), (ge, gu))) in d
+    for (i, (((zl, lz), (ge, gu)), fe)) in d
         .phi_zl
         .iter_mut()
         .zip(d.phi_lz.iter_mut())
         .zip(d.gamma_e.iter_mut().zip(d.gamma_u.iter_mut()))
+        .zip(d.feed_e.iter_mut())
         .enumerate()
     {
+        *fe = cast(g(fe0, i, 1.0))?;
         *zl = cast(at(i, n))?;
         *lz = cast(at(n, i))?;
         *ge = cast(g(ge0, i, 1.0))?;

@@ -6,7 +6,7 @@
 //! named.
 
 use famcc_core::config::MAX_ORDER;
-use famcc_core::ExtendedHighGain;
+use famcc_core::{Discretization, ExtendedHighGain};
 use proptest::prelude::*;
 
 const RK4_STEPS: usize = 2000;
@@ -24,17 +24,20 @@ fn rhs(mu: f64, a: &[f64], b0: f64, x: &[f64], e: f64, u: f64) -> Vec<f64> {
         .collect()
 }
 
-/// Classical RK4 over `dt` in [`RK4_STEPS`] steps with `e` and `u` held.
-fn rk4(mu: f64, a: &[f64], b0: f64, x0: &[f64], (e, u): (f64, f64), dt: f64) -> Vec<f64> {
+/// Classical RK4 over `dt` in [`RK4_STEPS`] steps with `u` held and the
+/// measurement the straight line from `e0` to `e1` (held: `e1 = e0`).
+fn rk4(mu: f64, a: &[f64], b0: f64, x0: &[f64], (e0, e1, u): (f64, f64, f64), dt: f64) -> Vec<f64> {
     let steps = RK4_STEPS;
     let h = dt / steps as f64;
     let mut x = x0.to_vec();
     let add = |x: &[f64], k: &[f64], s: f64| x.iter().zip(k).map(|(p, q)| p + s * q).collect::<Vec<_>>();
-    for _ in 0..steps {
-        let k1 = rhs(mu, a, b0, &x, e, u);
-        let k2 = rhs(mu, a, b0, &add(&x, &k1, h / 2.0), e, u);
-        let k3 = rhs(mu, a, b0, &add(&x, &k2, h / 2.0), e, u);
-        let k4 = rhs(mu, a, b0, &add(&x, &k3, h), e, u);
+    let e = |j: f64| e0 + (e1 - e0) * j / steps as f64;
+    for j in 0..steps {
+        let j = j as f64;
+        let k1 = rhs(mu, a, b0, &x, e(j), u);
+        let k2 = rhs(mu, a, b0, &add(&x, &k1, h / 2.0), e(j + 0.5), u);
+        let k3 = rhs(mu, a, b0, &add(&x, &k2, h / 2.0), e(j + 0.5), u);
+        let k4 = rhs(mu, a, b0, &add(&x, &k3, h), e(j + 1.0), u);
         for i in 0..x.len() {
             x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
         }
@@ -43,7 +46,7 @@ fn rk4(mu: f64, a: &[f64], b0: f64, x0: &[f64], (e, u): (f64, f64), dt: f64) -> 
 }
 
 /// One sample of the order-`N` recursion against RK4 (relative to the state's size).
-fn matches_rk4<const N: usize>(mu: f64, r: f64, b0: f64, x0: &[f64], (e, u): (f64, f64), dt: f64) {
+fn matches_rk4<const N: usize>(mu: f64, r: f64, b0: f64, x0: &[f64], (e, e1, u): (f64, f64, f64), dt: f64) {
     // Hurwitz by construction: the binomial (s + 2)^(N+1) with its poles scaled by `r`.
     let base = ExtendedHighGain::<f64, N>::binomial(mu, b0);
     let mut a: Vec<f64> = base.a.iter().copied().chain([base.a_ext]).collect();
@@ -53,13 +56,34 @@ fn matches_rk4<const N: usize>(mu: f64, r: f64, b0: f64, x0: &[f64], (e, u): (f6
     let mut arr = [0.0; N];
     arr.copy_from_slice(&a[..N]);
     let obs = ExtendedHighGain::<f64, N>::new(mu, arr, a[N], b0);
-    let d = obs.discretize(dt).expect("valid observer");
     let mut z = [0.0; N];
     z.copy_from_slice(&x0[..N]);
-    let (zn, ln) = d.advance(&z, x0[N], e, u);
-    let want = rk4(mu, &a, b0, &x0[..=N], (e, u), dt);
-    let got: Vec<f64> = zn.iter().copied().chain([ln]).collect();
-    for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+    // held: the next estimate from e alone; first-order hold: from the line e -> e1
+    let held = obs.discretize(dt).expect("valid observer");
+    let foh = obs
+        .with_discretization(Discretization::Foh)
+        .discretize(dt)
+        .expect("valid observer");
+    let (zn, ln) = held.advance(&z, x0[N], e, u);
+    compare::<N>(
+        mu,
+        r,
+        &[zn.as_slice(), &[ln]].concat(),
+        &rk4(mu, &a, b0, &x0[..=N], (e, e, u), dt),
+    );
+    let (v, vl) = foh.advance(&z, x0[N], e, u);
+    let (zn, ln) = foh.current(&v, vl, e1 - e);
+    compare::<N>(
+        mu,
+        r,
+        &[zn.as_slice(), &[ln]].concat(),
+        &rk4(mu, &a, b0, &x0[..=N], (e, e1, u), dt),
+    );
+}
+
+/// `got` against `want` in the balanced units `w_i = (mu / r)^i x_i`, relative to the state's size.
+fn compare<const N: usize>(mu: f64, r: f64, got: &[f64], want: &[f64]) {
+    for (i, (g, w)) in got.iter().zip(want.iter()).enumerate() {
         // Entry i scales like 1/mu^i: compare in the balanced units w_i = mu^i x_i.
         let s = (mu / r).powi(i as i32);
         let size = want
@@ -84,16 +108,17 @@ proptest! {
         b0 in prop_oneof![-50.0_f64..-0.1, 0.1_f64..50.0],
         x0 in prop::collection::vec(-3.0_f64..3.0, MAX_ORDER + 1),
         e in -2.0_f64..2.0,
+        e1 in -2.0_f64..2.0,
         u in -10.0_f64..10.0,
         dt_per_mu in 0.01_f64..2.0,
     ) {
         let dt = dt_per_mu * mu;
-        matches_rk4::<1>(mu, r, b0, &x0, (e, u), dt);
-        matches_rk4::<2>(mu, r, b0, &x0, (e, u), dt);
-        matches_rk4::<3>(mu, r, b0, &x0, (e, u), dt);
-        matches_rk4::<4>(mu, r, b0, &x0, (e, u), dt);
-        matches_rk4::<6>(mu, r, b0, &x0, (e, u), dt);
-        matches_rk4::<8>(mu, r, b0, &x0, (e, u), dt);
+        matches_rk4::<1>(mu, r, b0, &x0, (e, e1, u), dt);
+        matches_rk4::<2>(mu, r, b0, &x0, (e, e1, u), dt);
+        matches_rk4::<3>(mu, r, b0, &x0, (e, e1, u), dt);
+        matches_rk4::<4>(mu, r, b0, &x0, (e, e1, u), dt);
+        matches_rk4::<6>(mu, r, b0, &x0, (e, e1, u), dt);
+        matches_rk4::<8>(mu, r, b0, &x0, (e, e1, u), dt);
     }
 }
 
@@ -117,7 +142,9 @@ fn lumped_error<const N: usize>(b0: f64, b0_true: f64, dt: f64) -> (f64, f64) {
     z[0] = deriv(0.0, 0);
     let steps = (1.5 / dt).round() as usize;
     for k in 0..steps {
-        (z, l) = d.advance(&z, l, deriv(k as f64 * dt, 0), u);
+        let (e, next) = (deriv(k as f64 * dt, 0), deriv((k + 1) as f64 * dt, 0));
+        let (v, vl) = d.advance(&z, l, e, u);
+        (z, l) = d.current(&v, vl, next - e);
     }
     let t = steps as f64 * dt;
     let k = N.min(2) - 1;
@@ -176,6 +203,21 @@ fn without_the_input_term_the_estimate_is_wrong() {
 }
 
 #[test]
+fn the_default_is_the_binomial_of_order_n_plus_1() {
+    // (s + 2)^2, (s + 2)^3, (s + 2)^4
+    let one = ExtendedHighGain::<f64, 1>::binomial(0.01, 1.0);
+    assert_eq!((one.a, one.a_ext), ([4.0], 4.0));
+    let two = ExtendedHighGain::<f64, 2>::binomial(0.01, 1.0);
+    assert_eq!((two.a, two.a_ext), ([6.0, 12.0], 8.0));
+    let three = ExtendedHighGain::<f32, 3>::binomial(0.5, -2.0);
+    assert_eq!(
+        (three.a, three.a_ext, three.mu, three.b0),
+        ([8.0, 24.0, 32.0], 16.0, 0.5, -2.0)
+    );
+    assert_eq!(three.discretization, Discretization::Exact);
+}
+
+#[test]
 fn f32_is_the_f64_recursion_rounded() {
     // The f64 observer of the f32 one's numbers (0.01 and 1e-3 are not f32 values).
     let (mu, dt) = (0.01_f32, 1e-3_f32);
@@ -193,8 +235,14 @@ fn f32_is_the_f64_recursion_rounded() {
         assert_eq!(d32.gamma_u[i], d64.gamma_u[i] as f32);
         assert_eq!(d32.phi_zl[i], d64.phi_zl[i] as f32);
         assert_eq!(d32.phi_lz[i], d64.phi_lz[i] as f32);
+        assert_eq!(d32.feed_e[i], d64.feed_e[i] as f32);
     }
     assert_eq!(d32.phi_ll, d64.phi_ll as f32);
+    assert_eq!(d32.feed_e_l, d64.feed_e_l as f32);
+    assert_eq!(
+        (d32.gamma_e_l, d32.gamma_u_l),
+        (d64.gamma_e_l as f32, d64.gamma_u_l as f32)
+    );
 }
 
 #[test]
@@ -238,6 +286,9 @@ fn bad_parameters_are_named() {
         "observer_a"
     );
     assert_eq!(ok.discretize(0.0).unwrap_err().parameter, "dt");
+    for d in [Discretization::Euler, Discretization::Tustin] {
+        assert_eq!(name(ok.with_discretization(d)), "observer_discretization");
+    }
     // order 8 with mu = dt = 10 us: the entry of zhat_1 into Lhat is about
     // a_9 / mu^8 = 5e42, beyond f32 (fine in f64)
     let tiny = ExtendedHighGain::<f32, 8>::binomial(1e-5, 1.0);

@@ -23,6 +23,8 @@ mod guarantees;
 mod latch;
 mod no_alloc;
 mod no_flexible_clamp;
+#[cfg(feature = "observer")]
+mod observed;
 mod options;
 mod options_proptest;
 mod precomputed;
