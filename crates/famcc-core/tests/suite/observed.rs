@@ -150,3 +150,53 @@ fn an_applied_input_drives_the_observer() {
     b.step_applied(0.49, Some(0.0)).unwrap();
     assert!(ua != 0.0 && a.estimate().0 != b.estimate().0);
 }
+
+mod adversarial {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn finite_or_wild() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            3 => -1.0_f64..1.0,
+            1 => -1e6_f64..1e6,
+            1 => prop::sample::select(vec![1e300, -1e300, 1e-300, f64::MAX, -f64::MAX, f64::NAN, f64::INFINITY, 0.0]),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// Any inputs: no panic, every Ok finite, a non-finite input changes
+        /// nothing; after any prefix, a moderate tail is Ok again within a few samples.
+        #[test]
+        fn it_recovers_from_any_input(
+            mu in 0.005_f64..0.1,
+            b0 in prop_oneof![-20.0_f64..-0.05, 0.05_f64..20.0],
+            delta in 0.01_f64..50.0,
+            foh in any::<bool>(),
+            prefix in prop::collection::vec((finite_or_wild(), prop::option::of(finite_or_wild())), 0..30),
+            tail in prop::collection::vec(-1.0_f64..1.0, 40),
+        ) {
+            let hold = if foh { Discretization::Foh } else { Discretization::Exact };
+            let obs = ExtendedHighGain::binomial(mu, b0).with_discretization(hold);
+            let mut ctrl = ObservedController::new(law(None), obs, delta).unwrap();
+            for (e, applied) in prefix {
+                let before = ctrl;
+                match ctrl.step_applied(e, applied) {
+                    Ok(u) => prop_assert!(u.is_finite()),
+                    Err(StepError::NonFiniteInput) => prop_assert_eq!(ctrl, before),
+                    Err(_) => {}
+                }
+            }
+            let mut results = Vec::new();
+            for e in tail {
+                let r = ctrl.step(e);
+                if let Ok(u) = r {
+                    prop_assert!(u.is_finite());
+                }
+                results.push(r.is_ok());
+            }
+            prop_assert!(results[5..].iter().all(|&ok| ok), "moderate tail: {:?}", results);
+        }
+    }
+}
