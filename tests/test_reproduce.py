@@ -390,6 +390,10 @@ def test_sweep_report_answers_from_its_records(tmp_path):
         "| fails: settling: failed: never settled |"
     )
     assert "Caveat" not in md
+    # A sweep of the asked rate alone has nothing to set it next to.
+    only = [r for r in recs if r["rate_hz"] == 500]
+    md = sw.write_sweep_report(only, tmp_path / "one", {"t_end": 0.5}, figure=False).read_text()
+    assert "next to" not in md and "## 500 Hz" not in md
 
 
 def test_xi_text_never_prints_a_value_below_one_as_one():

@@ -1,0 +1,103 @@
+//! Cost of one `ObservedController::step` against the plain output-feedback
+//! `Controller::step` of the same law and order, in one run (issue 32, "Cost":
+//! at most 1.3x).
+//!
+//! Run with `cargo bench -p famcc-core --bench observed` (about a minute).
+//!
+//! Both replay the same recorded errors (example 1's and example 3's closed
+//! loops, benches/step.rs) in chunks of 1000 samples from saved states, so the
+//! time per iteration in microseconds is the time per step in nanoseconds. The
+//! observed controllers use the same laws in state feedback with the observer
+//! (`mu = 0.02`, `b0 = 1`, `delta = 10`), with the measurement held (`exact`) and
+//! with the first-order hold (`foh`).
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+#[allow(dead_code)]
+#[path = "step.rs"]
+mod step;
+
+use std::time::Duration;
+
+use criterion::{Criterion, Throughput};
+use famcc_core::{Controller, Discretization, ExtendedHighGain, ObservedController, Real};
+use step::{Stepper, Workload};
+
+/// The observed controller as a [`Stepper`]: NaN on an error (never on the recorded inputs).
+#[derive(Clone, Copy)]
+struct Observed<T: Real, const N: usize>(ObservedController<T, N>);
+
+impl<T: Real, const N: usize> Stepper<T> for Observed<T, N> {
+    #[inline(always)]
+    fn step_once(&mut self, e: T) -> T {
+        self.0.step(e).unwrap_or_else(|_| T::nan())
+    }
+}
+
+/// The law of `plain` without its differentiator, on the observer.
+fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretization) -> Observed<T, N> {
+    let law = plain.config().to_builder().differentiator(None).build().unwrap();
+    let obs = ExtendedHighGain::binomial(T::from_f64(0.02), T::one()).with_discretization(hold);
+    Observed(ObservedController::new(law, obs, T::from_f64(10.0)).unwrap())
+}
+
+fn settled<S: Stepper<T>, T: Copy>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: &str,
+    w: &Workload<S, T>,
+) {
+    let range = w.settled();
+    let mut j = range.start;
+    g.bench_function(format!("{name}/settled"), |b| {
+        b.iter(|| {
+            let out = w.run(j);
+            j = if j + 1 == range.end { range.start } else { j + 1 };
+            out
+        })
+    });
+}
+
+fn benches(c: &mut Criterion) {
+    let mut g = c.benchmark_group("observed");
+    g.throughput(Throughput::Elements(step::CHUNK as u64));
+    let ex1 = step::ex1::<f64>(Discretization::Exact);
+    let ex3 = step::ex3::<f64>(Discretization::Exact);
+    // Interleaved: each plain workload right before its observed ones.
+    settled(&mut g, "ex1-plain/f64", &ex1);
+    settled(
+        &mut g,
+        "ex1-observed-exact/f64",
+        &ex1.with(observed(&ex1.starts[0], Discretization::Exact)),
+    );
+    settled(
+        &mut g,
+        "ex1-observed-foh/f64",
+        &ex1.with(observed(&ex1.starts[0], Discretization::Foh)),
+    );
+    settled(&mut g, "ex3-plain/f64", &ex3);
+    settled(
+        &mut g,
+        "ex3-observed-exact/f64",
+        &ex3.with(observed(&ex3.starts[0], Discretization::Exact)),
+    );
+    settled(
+        &mut g,
+        "ex3-observed-foh/f64",
+        &ex3.with(observed(&ex3.starts[0], Discretization::Foh)),
+    );
+    g.finish();
+}
+
+fn main() {
+    let mut c = Criterion::default()
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .configure_from_args();
+    benches(&mut c);
+    c.final_summary();
+}
