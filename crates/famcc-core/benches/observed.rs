@@ -25,7 +25,7 @@ use std::time::Duration;
 
 use criterion::{Criterion, Throughput};
 use famcc_core::{Controller, Discretization, ExtendedHighGain, ObservedController, Real};
-use step::{Stepper, Workload};
+use step::Stepper;
 
 /// The observed controller as a [`Stepper`]: NaN on an error (never on the recorded inputs).
 #[derive(Clone, Copy)]
@@ -45,49 +45,37 @@ fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretizat
     Observed(ObservedController::new(law, obs, T::from_f64(10.0)).unwrap())
 }
 
-fn settled<S: Stepper<T>, T: Copy>(
-    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
-    name: &str,
-    w: &Workload<S, T>,
-) {
-    let range = w.settled();
-    let mut j = range.start;
-    g.bench_function(format!("{name}/settled"), |b| {
-        b.iter(|| {
-            let out = w.run(j);
-            j = if j + 1 == range.end { range.start } else { j + 1 };
-            out
-        })
-    });
-}
-
 fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("observed");
     g.throughput(Throughput::Elements(step::CHUNK as u64));
     let ex1 = step::ex1::<f64>(Discretization::Exact);
     let ex3 = step::ex3::<f64>(Discretization::Exact);
     // Interleaved: each plain workload right before its observed ones.
-    settled(&mut g, "ex1-plain/f64", &ex1);
-    settled(
+    step::bench_phases(&mut g, "ex1-plain/f64", &ex1, false);
+    step::bench_phases(
         &mut g,
         "ex1-observed-exact/f64",
         &ex1.with(observed(&ex1.starts[0], Discretization::Exact)),
+        false,
     );
-    settled(
+    step::bench_phases(
         &mut g,
         "ex1-observed-foh/f64",
         &ex1.with(observed(&ex1.starts[0], Discretization::Foh)),
+        false,
     );
-    settled(&mut g, "ex3-plain/f64", &ex3);
-    settled(
+    step::bench_phases(&mut g, "ex3-plain/f64", &ex3, false);
+    step::bench_phases(
         &mut g,
         "ex3-observed-exact/f64",
         &ex3.with(observed(&ex3.starts[0], Discretization::Exact)),
+        false,
     );
-    settled(
+    step::bench_phases(
         &mut g,
         "ex3-observed-foh/f64",
         &ex3.with(observed(&ex3.starts[0], Discretization::Foh)),
+        false,
     );
     g.finish();
 }

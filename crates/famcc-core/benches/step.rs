@@ -466,7 +466,7 @@ fn check_baseline<T: Real>(tol: f64) -> f64 {
 // ---------------------------------------------------------------------------
 // The benches.
 
-fn bench_phases<S: Stepper<T>, T: Copy>(
+pub fn bench_phases<S: Stepper<T>, T: Copy>(
     g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     name: &str,
     w: &Workload<S, T>,

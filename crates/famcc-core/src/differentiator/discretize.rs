@@ -142,7 +142,7 @@ pub(super) fn ramp_response<const N: usize>(
 
 /// `M0 = A - a C` of order `m` (the leading block): the matrix of eq. (34)
 /// in balanced coordinates.
-fn balanced_matrix<const N: usize>(a: &[f64; N], m: usize) -> Mat<N> {
+pub(super) fn balanced_matrix<const N: usize>(a: &[f64; N], m: usize) -> Mat<N> {
     let mut out = [[0.0; N]; N];
     for (i, (row, ai)) in out.iter_mut().zip(a.iter()).take(m).enumerate() {
         if let Some(first) = row.first_mut() {

@@ -46,7 +46,7 @@
 //! assert!((l - 3.0).abs() < 1e-2);
 //! ```
 
-use super::discretize::ramp_response;
+use super::discretize::{balanced_matrix, ramp_response};
 use super::expm::expm_zoh;
 use super::linalg::{routh_hurwitz, Mat};
 use crate::config::MAX_ORDER;
@@ -193,17 +193,7 @@ impl<T: Real, const N: usize> ExtendedHighGain<T, N> {
             *c = x.to_f64_lossless();
         }
         // M0 = A - a C on the leading (N+1) x (N+1) block.
-        let mut m0: Mat<EXT> = [[0.0; EXT]; EXT];
-        for (i, (row, ai)) in m0.iter_mut().zip(a.iter()).take(m).enumerate() {
-            if let Some(first) = row.first_mut() {
-                *first = -ai;
-            }
-            if i + 1 < m {
-                if let Some(sup) = row.get_mut(i + 1) {
-                    *sup += 1.0;
-                }
-            }
-        }
+        let m0: Mat<EXT> = balanced_matrix(&a, m);
         let singular = || {
             ConfigError::new(
                 "observer_mu",
