@@ -32,6 +32,7 @@ def test_state_layout_names_period_and_config() -> None:
         "period",
         "config",
         "filtered",
+        "lhat",
     )
     ctrl = example1()
     ctrl.step(0.1)
@@ -60,6 +61,8 @@ def test_state_layout_names_period_and_config() -> None:
         ("config", 1.0),
         ("filtered", np.inf),
         ("filtered", np.nan),
+        ("lhat", 0.5),  # a plain controller has no observer: Lhat must be 0
+        ("lhat", np.nan),
     ],
 )
 def test_set_state_checks_every_slot(field: str, value: float) -> None:

@@ -61,8 +61,8 @@ def state_labels(controller: Controller, prefix: str = "") -> list[str]:
 
     >>> import famcc
     >>> c = famcc.Controller(2, 1e-3, famcc.Linear(1.0), eps=0.1, k_u=1.0)
-    >>> state_labels(c)[-3:]
-    ['filtered', 'z_hat[0]', 'z_hat[1]']
+    >>> state_labels(c)[-4:]
+    ['filtered', 'lhat', 'z_hat[0]', 'z_hat[1]']
     """
     names = list(_STATE_HEAD) + [f"z_hat[{i}]" for i in range(controller.order)]
     return [prefix + s for s in names]

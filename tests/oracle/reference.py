@@ -774,8 +774,9 @@ class ReferenceController:
 
     def state(self) -> list:
         """``[started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period,
-        config, filtered, zhat...]`` (the layout of ``famcc.Controller.state()``;
-        the compiled core's configuration fingerprint is not known here: 0)."""
+        config, filtered, lhat, zhat...]`` (the layout of ``famcc.Controller.state()``;
+        the compiled core's configuration fingerprint is not known here: 0; this
+        oracle has no observer, so ``lhat`` is 0)."""
         return [
             1.0 if self._started else 0.0,
             self._t_base,
@@ -787,21 +788,22 @@ class ReferenceController:
             self.dt,
             0.0,
             self._filtered,
+            0.0,
             *self._zhat,
         ]
 
     def set_state(self, v: Sequence[float]) -> None:
         """Continues from a vector returned by ``state()`` (either implementation's)."""
         v = [float(x) for x in v]
-        if len(v) != 10 + self.order:
-            raise ValueError(f"state must have {10 + self.order} entries")
+        if len(v) != 11 + self.order:
+            raise ValueError(f"state must have {11 + self.order} entries")
         self.reset()
         self._started = v[0] != 0.0
         self._t_base, self._k = v[1], int(v[2])
         self._rho0_x, self._rho0_y = v[3], v[4]
         self._clamps, self._last_v = int(v[5]), v[6]
         self._filtered = v[9]
-        self._zhat = v[10:]
+        self._zhat = v[11:]
 
     @property
     def diagnostics(self) -> ReferenceDiagnostics:

@@ -1,4 +1,4 @@
-//! Cost of one `ObservedController::step` against the plain output-feedback
+//! Cost of one `Controller::step` with the observer (`ConfigBuilder::observer`) against the plain output-feedback
 //! `Controller::step` of the same law and order, in one run (issue 32, "Cost":
 //! at most 1.3x).
 //!
@@ -7,7 +7,7 @@
 //! Both replay the same recorded errors (example 1's and example 3's closed
 //! loops, benches/step.rs) in chunks of 1000 samples from saved states, so the
 //! time per iteration in microseconds is the time per step in nanoseconds. The
-//! observed controllers use the same laws in state feedback with the observer
+//! observed controllers use the same laws with the observer in place of the differentiator
 //! (`mu = 0.02`, `b0 = 1`, `delta = 10`), with the measurement held (`exact`) and
 //! with the first-order hold (`foh`).
 #![allow(
@@ -24,25 +24,20 @@ mod step;
 use std::time::Duration;
 
 use criterion::{Criterion, Throughput};
-use famcc_core::{Controller, Discretization, ExtendedHighGain, ObservedController, Real};
-use step::Stepper;
-
-/// The observed controller as a [`Stepper`]: NaN on an error (never on the recorded inputs).
-#[derive(Clone, Copy)]
-struct Observed<T: Real, const N: usize>(ObservedController<T, N>);
-
-impl<T: Real, const N: usize> Stepper<T> for Observed<T, N> {
-    #[inline(always)]
-    fn step_once(&mut self, e: T) -> T {
-        self.0.step(e).unwrap_or_else(|_| T::nan())
-    }
-}
+use famcc_core::{Controller, Discretization, ExtendedHighGain, Real};
 
 /// The law of `plain` without its differentiator, on the observer.
-fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretization) -> Observed<T, N> {
-    let law = plain.config().to_builder().differentiator(None).build().unwrap();
+fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretization) -> Controller<T, N> {
     let obs = ExtendedHighGain::binomial(T::from_f64(0.02), T::one()).with_discretization(hold);
-    Observed(ObservedController::new(law, obs, T::from_f64(10.0)).unwrap())
+    let cfg = plain
+        .config()
+        .to_builder()
+        .differentiator(None)
+        .observer(Some(obs))
+        .cancellation_limit(Some(T::from_f64(10.0)))
+        .build()
+        .unwrap();
+    Controller::new(cfg)
 }
 
 fn benches(c: &mut Criterion) {

@@ -60,7 +60,7 @@
 //! | `integral` | integral action ([`ConfigBuilder::integral`]) |
 //! | `one-off-period` | steps at another period than `dt` ([`Controller::step_dt`]), and restoring a state taken at one; without it the clock never leaves `T` (no soft-float `f64` on a single-precision FPU) |
 //! | `first-order-hold` | the differentiator's [`Discretization::Foh`] (its feedthrough in the step, and its restart, which starts a clock run in `f64`) |
-//! | `observer` | the extended high-gain differentiator `ExtendedHighGain` and the law on it with the lumped term cancelled, `ObservedController` (disturbance estimation, docs/observer.md) |
+//! | `observer` | the extended high-gain differentiator `ExtendedHighGain` in place of the differentiator, its estimate of the lumped term cancelled, bounded, inside the law ([`ConfigBuilder::observer`]; disturbance estimation, docs/observer.md) |
 #![no_std]
 #![forbid(unsafe_code)]
 #![cfg_attr(
@@ -91,11 +91,11 @@ mod float;
 pub mod gamma;
 pub mod jet;
 pub mod manifold;
-#[cfg(feature = "observer")]
-pub mod observed;
 pub mod skew;
 pub mod transition;
 
+#[cfg(feature = "observer")]
+pub use config::DEFAULT_CANCELLATION_SHARE;
 pub use config::{Config, ConfigBuilder};
 pub use constraint::Constraint;
 pub use controller::{
@@ -111,7 +111,5 @@ pub use feedback::Feedback;
 pub use float::Real;
 pub use gamma::Gamma;
 pub use jet::Jet;
-#[cfg(feature = "observer")]
-pub use observed::ObservedController;
 pub use skew::{Skew, SkewKind, SkewedLaw};
 pub use transition::Transition;

@@ -18,7 +18,7 @@ enum Margin<T> {
 /// A [`Config`] under construction; [`ConfigBuilder::build`] validates it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ConfigBuilder<T, const N: usize> {
-    dt: T,
+    pub(super) dt: T,
     laws: [(Feedback<T>, Option<Skew<T>>); N],
     n_laws: usize,
     constraint: Constraint<T>,
@@ -29,13 +29,17 @@ pub struct ConfigBuilder<T, const N: usize> {
     rho_e: Margin<T>,
     transition: Transition,
     latch: Latch,
-    differentiator: Option<HighGain<T, N>>,
+    pub(super) differentiator: Option<HighGain<T, N>>,
     initial_derivatives: Option<[T; N]>,
     estimate_limits: Option<[T; N]>,
-    integral: bool,
-    output_limits: Option<(T, T)>,
+    pub(super) integral: bool,
+    pub(super) output_limits: Option<(T, T)>,
     rate_limit: Option<T>,
     initial_output: Option<T>,
+    #[cfg(feature = "observer")]
+    pub(super) observer: Option<crate::ExtendedHighGain<T, N>>,
+    #[cfg(feature = "observer")]
+    pub(super) cancellation_limit: Option<T>,
 }
 
 impl<T: Real, const N: usize> Config<T, N> {
@@ -74,6 +78,10 @@ impl<T: Real, const N: usize> Config<T, N> {
             output_limits: None,
             rate_limit: None,
             initial_output: None,
+            #[cfg(feature = "observer")]
+            observer: None,
+            #[cfg(feature = "observer")]
+            cancellation_limit: None,
         }
     }
 
@@ -102,6 +110,10 @@ impl<T: Real, const N: usize> Config<T, N> {
             output_limits: self.output_limits,
             rate_limit: self.rate_limit,
             initial_output: self.initial_output,
+            #[cfg(feature = "observer")]
+            observer: self.observer().copied(),
+            #[cfg(feature = "observer")]
+            cancellation_limit: self.cancellation_limit(),
         }
     }
 }
@@ -221,50 +233,6 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
         Ok(config)
     }
 
-    /// [`ConfigBuilder::build`] with the differentiator's recursion `hgd`
-    /// precomputed for `dt`, e.g. on a host by
-    /// [`HighGain::discretize_order`]`(dt, plant order)` (the plant order is
-    /// `N`, or `N - 1` with integral action): nothing is discretized here, so
-    /// a microcontroller that builds its configuration this way links
-    /// neither the `f64` matrix exponential nor soft-float `f64`.
-    ///
-    /// The differentiator must still be given ([`ConfigBuilder::differentiator`]):
-    /// it names the recursion in diagnostics and snapshots, and
-    /// [`crate::Controller::step_dt`] rediscretizes it for a one-off period.
-    /// Its values are checked as in `build`, but instead of the Hurwitz test
-    /// of its coefficients the recursion itself is checked, in `T`: every
-    /// entry finite, the prefilter gain in `(0, 1]`, the slots below the plant
-    /// order (the integral's) exactly zero, and the spectral radius of `Phi`
-    /// below 1. Whether `hgd` is this differentiator's discretization is the
-    /// caller's to ensure: build it with the same code on the host.
-    ///
-    /// ```
-    /// use famcc_core::{Config, Constraint, Feedback, HighGain};
-    /// let b = Config::<f32, 2>::builder(1e-3, &[(Feedback::Linear { k: 1.0 }, None)],
-    ///                                   Constraint::Lateral { eps: 0.1 }, 5.0)
-    ///     .differentiator(Some(HighGain::paper()));
-    /// // on the host:
-    /// let hgd = HighGain::<f32, 2>::paper().discretize(1e-3).unwrap();
-    /// // on the target, from the host's values:
-    /// assert_eq!(b.build_discretized(hgd), b.build());
-    /// let mut unstable = hgd;
-    /// unstable.phi[1][1] = 1.5;
-    /// assert_eq!(b.build_discretized(unstable).unwrap_err().parameter, "discretized");
-    /// ```
-    pub fn build_discretized(&self, hgd: DiscreteHgd<T, N>) -> Result<Config<T, N>, ConfigError> {
-        let (laws, rho_e, plant_order) = self.checked(false)?;
-        if self.differentiator.is_none() {
-            return Err(ConfigError::new(
-                "differentiator",
-                "must be given with a precomputed recursion (e.g. HighGain::paper())",
-            ));
-        }
-        hgd.check_precomputed(N - plant_order)?;
-        let config = self.assemble(laws, rho_e, Some(hgd));
-        crate::controller::probe(&config)?;
-        Ok(config)
-    }
-
     /// [`ConfigBuilder::build`] without the probe.
     pub(crate) fn build_unprobed(&self) -> Result<Config<T, N>, ConfigError> {
         let (laws, rho_e, plant_order) = self.checked(true)?;
@@ -282,14 +250,17 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
                  raise mu or use discretization exact or tustin",
             ));
         }
-        Ok(self.assemble(laws, rho_e, hgd))
+        self.assemble(laws, rho_e, hgd)
     }
 
     /// Every rule but the differentiator's discretization (with the Hurwitz
     /// test of its coefficients when `hurwitz`): the validated stage laws,
     /// `rho_e` and the plant order.
     #[allow(clippy::type_complexity)]
-    fn checked(&self, hurwitz: bool) -> Result<([SkewedLaw<T>; N], Option<T>, usize), ConfigError> {
+    pub(super) fn checked(
+        &self,
+        hurwitz: bool,
+    ) -> Result<([SkewedLaw<T>; N], Option<T>, usize), ConfigError> {
         if N == 0 {
             return Err(ConfigError::new("order", "must be >= 1"));
         }
@@ -358,13 +329,15 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
     }
 
     /// The configuration of these checked values.
-    fn assemble(
+    pub(super) fn assemble(
         &self,
         laws: [SkewedLaw<T>; N],
         rho_e: Option<T>,
         hgd: Option<DiscreteHgd<T, N>>,
-    ) -> Config<T, N> {
-        Config {
+    ) -> Result<Config<T, N>, ConfigError> {
+        #[cfg(feature = "observer")]
+        let observed = self.observed()?;
+        Ok(Config {
             dt: self.dt,
             laws,
             constraint: self.constraint,
@@ -383,6 +356,8 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
             output_limits: self.output_limits,
             rate_limit: self.rate_limit,
             initial_output: self.initial_output,
-        }
+            #[cfg(feature = "observer")]
+            observed,
+        })
     }
 }

@@ -29,10 +29,17 @@
 mod builder;
 mod guarantees;
 mod lint;
+#[cfg(feature = "observer")]
+mod observer;
 mod options;
+mod precomputed;
 
 pub use builder::ConfigBuilder;
 pub use lint::{Finding, Findings, Lint, Suggestion, LINT_COUNT};
+#[cfg(feature = "observer")]
+pub(crate) use observer::Observed;
+#[cfg(feature = "observer")]
+pub use observer::DEFAULT_CANCELLATION_SHARE;
 pub use options::check_estimate_limits;
 
 use crate::differentiator::{DiscreteHgd, Recursion};
@@ -100,6 +107,9 @@ pub struct Config<T, const N: usize> {
     output_limits: Option<(T, T)>,
     rate_limit: Option<T>,
     initial_output: Option<T>,
+    /// The observer (replaces the differentiator) and its cancellation's bound.
+    #[cfg(feature = "observer")]
+    observed: Option<observer::Observed<T, N>>,
 }
 
 impl<T: Real, const N: usize> Config<T, N> {
@@ -256,7 +266,16 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// apart (controller/advance.rs).
     #[inline(always)]
     pub(crate) fn steady_fast(&self) -> bool {
-        self.unlimited() && !self.hgd.as_ref().is_some_and(Recursion::has_feedthrough)
+        self.unlimited() && !self.hgd.as_ref().is_some_and(Recursion::has_feedthrough) && !self.observing()
+    }
+
+    /// True with an observer (feature `observer`).
+    #[inline(always)]
+    pub(crate) fn observing(&self) -> bool {
+        #[cfg(feature = "observer")]
+        return self.observed.is_some();
+        #[cfg(not(feature = "observer"))]
+        false
     }
 
     /// A 52-bit fingerprint of the configuration's values (FNV-1a over

@@ -102,8 +102,19 @@ impl<T: Real, const N: usize> Controller<T, N> {
         // the law, so that its values need not live through the law's calls.
         // Without a differentiator the next step measures its own vector.
         let carried = hgd.is_some();
-        let (e, mut z, plan) = match measured {
-            Measured::Error(e) => match hgd {
+        // With an observer its estimate replaces the differentiator's (observe.rs).
+        let mut lumped = T::zero();
+        let observed = if UNLIMITED {
+            None
+        } else {
+            self.observe(first, &measured, applied)
+        };
+        let (e, mut z, plan) = match (measured, observed) {
+            (_, Some(o)) => {
+                lumped = o.lumped;
+                (o.e, o.law, Next::Known((o.next, o.e)))
+            }
+            (Measured::Error(e), None) => match hgd {
                 Some(d) => {
                     let z =
                         self.current_estimate::<UNLIMITED>(first, d, e, || d.filter(self.state.filtered, e));
@@ -119,7 +130,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 }
                 None => return Err(StepError::NoDifferentiator),
             },
-            Measured::State(mut z) => {
+            (Measured::State(mut z), None) => {
                 let e = z.get(off).copied().unwrap_or_else(T::zero);
                 if let (1, Some(i)) = (off, z.first_mut()) {
                     *i = self.state.zhat.first().copied().unwrap_or_else(T::zero);
@@ -190,7 +201,13 @@ impl<T: Real, const N: usize> Controller<T, N> {
             self.state.envelopes = env;
             eval = constraint.evaluate(c.last_law(), &m, &mut self.state.envelopes, None, t, flexible);
         }
-        let v = -c.k_u() * c.gamma().eval(eval.xi);
+        // With an observer the command is u = v - c (config/observer.rs).
+        let cancel = if UNLIMITED {
+            T::zero()
+        } else {
+            self.cancellation(lumped)
+        };
+        let v = -c.k_u() * c.gamma().eval(eval.xi) - cancel;
         let env = &self.state.envelopes;
         let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
         let (mut next, filtered) = self.next_estimate::<UNLIMITED>(first, plan, e);
@@ -260,6 +277,10 @@ impl<T: Real, const N: usize> Controller<T, N> {
         d.clamp_count = d.clamp_count.saturating_add(u64::from(eval.clamped));
         d.v = limited.u;
         d.v_unlimited = v;
+        #[cfg(feature = "observer")]
+        {
+            d.cancellation = cancel;
+        }
         d.integral = integral;
         d.integrating = integrating;
         d.unsaturated_expansions = d
@@ -268,6 +289,10 @@ impl<T: Real, const N: usize> Controller<T, N> {
         st.started = true;
         st.zhat = next;
         st.filtered = filtered;
+        #[cfg(feature = "observer")]
+        {
+            st.lhat = lumped;
+        }
         st.sampled = st.clock;
         st.clock = clock_next;
         Ok(limited.u)
@@ -347,7 +372,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
     /// The estimate after the optional saturation `|z_hat_i| <= limit_i`
     /// (the integral, slot 0 with integral action, is not limited).
     #[inline]
-    fn limited(&self, mut z: [T; N]) -> [T; N] {
+    pub(super) fn limited(&self, mut z: [T; N]) -> [T; N] {
         if let Some(limits) = self.config.estimate_limits() {
             z.iter_mut()
                 .zip(limits.iter())

@@ -44,6 +44,11 @@ pub struct Diagnostics<T, const N: usize> {
     /// The law's output `v = -k_u Gamma(xi)` before the output limits
     /// (equal to `v` without them).
     pub v_unlimited: T,
+    /// The observer's cancellation `c = clip(Lhat / b0, -delta, delta)` in
+    /// the output (config/observer.rs; 0 without an observer): `v_unlimited`
+    /// is `-k_u Gamma(xi) - c`.
+    #[cfg(feature = "observer")]
+    pub cancellation: T,
     /// The integral `I` the output used (integral action), `None` without.
     pub integral: Option<T>,
     /// True when this step integrated its sample into `I` (false while the
@@ -77,6 +82,8 @@ impl<T: Real, const N: usize> Default for Diagnostics<T, N> {
             clamp_count: 0,
             v: z,
             v_unlimited: z,
+            #[cfg(feature = "observer")]
+            cancellation: z,
             integral: None,
             integrating: false,
             unsaturated_expansions: 0,

@@ -47,6 +47,7 @@ mod advance;
 mod clock;
 mod diagnostics;
 mod health;
+mod observe;
 mod output;
 mod probe;
 mod recover;
@@ -82,6 +83,9 @@ struct State<T, const N: usize> {
     /// The differentiator's last input: the prefiltered error (the error
     /// itself without a prefilter).
     filtered: T,
+    /// The observer's estimate of the lumped term, `Lhat` (observe.rs).
+    #[cfg(feature = "observer")]
+    lhat: T,
     envelopes: Envelopes<T>,
     diag: Diagnostics<T, N>,
 }
@@ -101,6 +105,10 @@ impl<T: Real, const N: usize> State<T, N> {
     ) -> StepError {
         if self.started {
             (self.zhat, self.filtered) = recover::restarted(c, measured, hgd, cause);
+            #[cfg(feature = "observer")]
+            {
+                self.lhat = T::zero();
+            }
             self.clock = clock_next;
             if hgd.is_some_and(differentiator::Recursion::has_feedthrough) {
                 // The first-order hold: the next sample starts a run (count
@@ -145,6 +153,8 @@ impl<T: Real, const N: usize> Controller<T, N> {
             sampled: Clock::start(config.dt()),
             zhat: [T::zero(); N],
             filtered: T::zero(),
+            #[cfg(feature = "observer")]
+            lhat: T::zero(),
             envelopes: config.constraint().envelopes(config.settle_time()),
             diag: Diagnostics::default(),
         }

@@ -87,6 +87,13 @@ pub(crate) fn probe<T: Real, const N: usize>(c: &Config<T, N>) -> Result<(), Con
             "is so large that k_u Gamma(xi) overflows (the paper uses k_u between 2 and 30)",
         ));
     }
+    if c.observing() && runs(c, false) {
+        return Err(ConfigError::new(
+            "observer_mu",
+            "(with dt) gives observer gains so large that the first steps overflow for |e| <= 1e3 \
+             (raise observer_mu, e.g. to 20 dt)",
+        ));
+    }
     if c.recursion().is_some() && runs(c, false) {
         return Err(ConfigError::new(
             "mu",
@@ -104,7 +111,8 @@ pub(crate) fn probe<T: Real, const N: usize>(c: &Config<T, N>) -> Result<(), Con
 /// True when the probe's steps all succeed, stepping the output error when
 /// `output` and the configuration allows it, the measured vector otherwise.
 fn runs<T: Real, const N: usize>(c: &Config<T, N>, output: bool) -> bool {
-    let by_error = output && (c.recursion().is_some() || !differentiator::needed_at(c.plant_order()));
+    let by_error =
+        output && (c.recursion().is_some() || c.observing() || !differentiator::needed_at(c.plant_order()));
     probe_errors().all(|e| {
         let e = T::from_f64(e);
         let z = c.initial_estimate(e);

@@ -29,7 +29,7 @@ use crate::{Config, ConfigError, Real};
 
 /// The names of the leading entries of the flat layout, in order; the
 /// estimate `z_hat[0..N]` ([`Snapshot::ESTIMATE`]) follows them.
-pub const SNAPSHOT_FIELDS: [&str; 10] = [
+pub const SNAPSHOT_FIELDS: [&str; 11] = [
     "started",
     "t_base",
     "k",
@@ -40,6 +40,7 @@ pub const SNAPSHOT_FIELDS: [&str; 10] = [
     "period",
     "config",
     "filtered",
+    "lhat",
 ];
 
 /// Everything a controller needs to continue bit-identically, as plain
@@ -69,9 +70,12 @@ pub struct Snapshot<T, const N: usize> {
     /// The differentiator's last input: the prefiltered error
     /// ([`crate::HighGain::with_prefilter`]; the error itself without one).
     pub filtered: T,
+    /// The observer's estimate of the lumped term `Lhat` (0 without an
+    /// observer; config/observer.rs).
+    pub lhat: T,
 }
 
-const _: () = assert!(SNAPSHOT_FIELDS.len() == 10, "update split() and length_error()");
+const _: () = assert!(SNAPSHOT_FIELDS.len() == 11, "update split() and length_error()");
 
 /// The largest integer every `f64` below it represents exactly (`2^53`).
 const EXACT_INTEGERS: f64 = 9_007_199_254_740_992.0;
@@ -110,14 +114,14 @@ fn rule(ok: bool, name: &'static str, rule: &'static str) -> Result<(), ConfigEr
 
 impl<T: Real, const N: usize> Snapshot<T, N> {
     /// [`SNAPSHOT_FIELDS`].
-    pub const FIELDS: [&'static str; 10] = SNAPSHOT_FIELDS;
+    pub const FIELDS: [&'static str; 11] = SNAPSHOT_FIELDS;
     /// The name of the trailing estimate entries (`z_hat[0]`, `z_hat[1]`, ...).
     pub const ESTIMATE: &'static str = "z_hat";
     /// Length of the flat layout: the fields, then the estimate.
     pub const LEN: usize = SNAPSHOT_FIELDS.len() + N;
 
     /// Writes the flat layout `[started, t_base, k, rho0_x, rho0_y,
-    /// clamp_count, last_v, period, config, filtered, z_hat...]` into `out` (exactly
+    /// clamp_count, last_v, period, config, filtered, lhat, z_hat...]` into `out` (exactly
     /// [`Self::LEN`] entries; `started` as 1 or 0, the counts as exact
     /// integers, saturating at `2^53`).
     pub fn to_array(&self, out: &mut [f64]) -> Result<(), ConfigError> {
@@ -137,6 +141,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
             f(self.period),
             n(self.config),
             f(self.filtered),
+            f(self.lhat),
         ];
         let estimate = self.zhat.iter().map(|z| f(*z));
         out.iter_mut()
@@ -150,8 +155,10 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
     /// non-negative integers and values that are not finite in `T`;
     /// the rest is checked by [`crate::Controller::restore`].
     pub fn from_array(v: &[f64]) -> Result<Self, ConfigError> {
-        let ([started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period, config, filtered], estimate) =
-            split::<N>(v)?;
+        let (
+            [started, t_base, k, rho0_x, rho0_y, clamp_count, last_v, period, config, filtered, lhat],
+            estimate,
+        ) = split::<N>(v)?;
         rule(
             *started == 0.0 || *started == 1.0,
             "state.started",
@@ -174,6 +181,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
             period: value(*period, "state.period")?,
             config: count(*config, "state.config")?,
             filtered: value(*filtered, "state.filtered")?,
+            lhat: value(*lhat, "state.lhat")?,
         })
     }
 
@@ -205,7 +213,7 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
         }
         // The differentiator's estimate is kept in range (recover.rs);
         // without one only the integral is carried, the rest is measured.
-        let carried = if c.recursion().is_some() {
+        let carried = if c.recursion().is_some() || c.observing() {
             N
         } else {
             c.estimate_offset()
@@ -221,6 +229,11 @@ impl<T: Real, const N: usize> Snapshot<T, N> {
             "must be finite and within the estimate range (2^512 in f64, 2^64 in f32)",
         )?;
         rule(self.filtered.is_finite(), "state.filtered", "must be finite")?;
+        rule(
+            in_range(&[self.lhat]) && (c.observing() || self.lhat == T::zero()),
+            "state.lhat",
+            "must be within the estimate range with an observer, and 0 without one",
+        )?;
         let (ex, ey) = c.constraint().eps();
         let widths = self.rho0_x >= ex && self.rho0_y >= ey;
         rule(
@@ -264,6 +277,10 @@ impl<T: Real, const N: usize> Controller<T, N> {
             period: st.clock.period,
             config: self.config.fingerprint(),
             filtered: st.filtered,
+            #[cfg(feature = "observer")]
+            lhat: st.lhat,
+            #[cfg(not(feature = "observer"))]
+            lhat: T::zero(),
         }
     }
 
@@ -279,6 +296,10 @@ impl<T: Real, const N: usize> Controller<T, N> {
         st.clock = Clock::at(snap.t_base, snap.k, snap.period, self.config.settle_time());
         st.zhat = snap.zhat;
         st.filtered = snap.filtered;
+        #[cfg(feature = "observer")]
+        {
+            st.lhat = snap.lhat;
+        }
         st.envelopes.x.rho0 = snap.rho0_x;
         st.envelopes.y.rho0 = snap.rho0_y;
         st.diag.clamp_count = snap.clamp_count;
@@ -291,14 +312,14 @@ impl<T: Real, const N: usize> Controller<T, N> {
 fn length_error() -> ConfigError {
     ConfigError::new(
         "state",
-        "must be a float vector of length 10 + order (the fields, then z_hat)",
+        "must be a float vector of length 11 + order (the fields, then z_hat)",
     )
 }
 
 /// The fields and the estimate of a flat vector of the right length.
 #[allow(clippy::type_complexity)]
-fn split<const N: usize>(v: &[f64]) -> Result<(&[f64; 10], &[f64]), ConfigError> {
-    match v.split_first_chunk::<10>() {
+fn split<const N: usize>(v: &[f64]) -> Result<(&[f64; 11], &[f64]), ConfigError> {
+    match v.split_first_chunk::<11>() {
         Some((head, estimate)) if estimate.len() == N => Ok((head, estimate)),
         _ => Err(length_error()),
     }

@@ -25,6 +25,8 @@ mod no_alloc;
 mod no_flexible_clamp;
 #[cfg(feature = "observer")]
 mod observed;
+#[cfg(feature = "observer")]
+mod observed_state;
 mod options;
 mod options_proptest;
 mod precomputed;

@@ -1,11 +1,12 @@
 //! The law on the extended differentiator with the lumped term cancelled
-//! (`ObservedController`, docs/observer.md): on a plant with a constant load and
-//! a 20 % error in the nominal input gain, the holding-input floor of the plain
-//! output-feedback controller goes, with the barrier kept (|xi| < 1) and the
-//! command bounded; its configuration rules are named.
+//! (`ConfigBuilder::observer`, docs/observer.md): on a plant with a constant
+//! load and a 20 % error in the nominal input gain, the holding-input floor of
+//! the plain output-feedback controller goes, with the barrier kept (|xi| < 1)
+//! and the command bounded; its configuration rules are named; its state
+//! survives a snapshot; the output limits bound the total command.
 
 use famcc_core::{
-    Config, Constraint, Controller, Discretization, ExtendedHighGain, Feedback, HighGain, ObservedController,
+    Config, ConfigError, Constraint, Controller, Discretization, ExtendedHighGain, Feedback, HighGain,
     StepError,
 };
 
@@ -42,6 +43,16 @@ fn law(differentiator: Option<HighGain<f64, 2>>) -> Config<f64, 2> {
     .expect("a valid law")
 }
 
+/// The law with the observer `obs`, the cancellation bounded by `delta`.
+fn observed(obs: ExtendedHighGain<f64, 2>, delta: f64) -> Result<Controller<f64, 2>, ConfigError> {
+    let cfg = law(None)
+        .to_builder()
+        .observer(Some(obs))
+        .cancellation_limit(Some(delta))
+        .build()?;
+    Ok(Controller::new(cfg))
+}
+
 /// 10 s regulating y to 0 from y = 1: the largest |e| over the last 2 s, the
 /// largest |u|, and the largest |xi| after the first step.
 fn run(mut step: impl FnMut(f64) -> (f64, f64)) -> (f64, f64, f64) {
@@ -68,8 +79,8 @@ fn the_cancellation_removes_the_holding_input_floor() {
     let (floor, _, xi_plain) = run(|e| (plain.step(e).unwrap(), plain.diagnostics().xi));
     for hold in [Discretization::Exact, Discretization::Foh] {
         let obs = ExtendedHighGain::binomial(0.02, 1.2 * G).with_discretization(hold); // b0 20 % high
-        let mut ctrl = ObservedController::new(law(None), obs, 4.0).unwrap();
-        let (tail, u_max, xi) = run(|e| (ctrl.step(e).unwrap(), ctrl.law().diagnostics().xi));
+        let mut ctrl = observed(obs, 4.0).unwrap();
+        let (tail, u_max, xi) = run(|e| (ctrl.step(e).unwrap(), ctrl.diagnostics().xi));
         // The plain loop holds -LOAD / G = -1.33 through xi: |e| ~ eps tanh(1.33 / 10) ~ 0.013.
         assert!(floor > 5e-3, "the plain controller's floor {floor}");
         assert!(
@@ -83,7 +94,7 @@ fn the_cancellation_removes_the_holding_input_floor() {
         assert!(u_max < 5.0 * 1.0 + 4.0 + 1.0, "{hold:?}: max |u| {u_max}");
         // The cancellation carries the load: at rest u = -c holds it, c -> LOAD / G
         // whatever b0 (Lhat lumps the gain error in), and the law's v goes to 0.
-        let c = ctrl.cancellation();
+        let c = ctrl.diagnostics().cancellation;
         assert!((c - LOAD / G).abs() < 1e-3, "{hold:?}: cancellation {c}");
     }
 }
@@ -92,19 +103,34 @@ fn the_cancellation_removes_the_holding_input_floor() {
 fn the_cancellation_is_bounded() {
     // delta below what the load needs: c sits at the bound, the law holds the rest.
     let obs = ExtendedHighGain::binomial(0.02, G);
-    let mut ctrl = ObservedController::new(law(None), obs, 0.5).unwrap();
-    let (tail, _, xi) = run(|e| (ctrl.step(e).unwrap(), ctrl.law().diagnostics().xi));
-    assert_eq!(ctrl.cancellation(), 0.5);
+    let mut ctrl = observed(obs, 0.5).unwrap();
+    let (tail, _, xi) = run(|e| (ctrl.step(e).unwrap(), ctrl.diagnostics().xi));
+    assert_eq!(ctrl.diagnostics().cancellation, 0.5);
     assert!(tail < 0.1 && xi < 1.0, "steady |e| {tail}, max |xi| {xi}");
 }
 
 #[test]
 fn bad_configurations_and_inputs_are_named() {
     let obs = ExtendedHighGain::binomial(0.02, G);
-    let err = |c: Config<f64, 2>, d: f64| ObservedController::new(c, obs, d).unwrap_err().parameter;
-    assert_eq!(err(law(Some(HighGain::paper())), 1.0), "differentiator");
-    assert_eq!(err(law(None), 0.0), "delta");
-    assert_eq!(err(law(None), f64::NAN), "delta");
+    let err = |b: famcc_core::ConfigBuilder<f64, 2>| b.build().unwrap_err().parameter;
+    let with = |d: Option<f64>| law(None).to_builder().observer(Some(obs)).cancellation_limit(d);
+    assert_eq!(
+        err(with(Some(1.0)).differentiator(Some(HighGain::paper()))),
+        "differentiator"
+    );
+    assert_eq!(err(with(Some(0.0))), "cancellation_limit");
+    assert_eq!(err(with(Some(f64::NAN))), "cancellation_limit");
+    // No bound and no finite output limits to take it from.
+    assert_eq!(err(with(None)), "cancellation_limit");
+    assert_eq!(
+        err(with(None).output_limits(Some((-1.0, f64::INFINITY)))),
+        "cancellation_limit"
+    );
+    // A bound without an observer bounds nothing.
+    assert_eq!(
+        err(law(None).to_builder().cancellation_limit(Some(1.0))),
+        "cancellation_limit"
+    );
     let integral = Config::<f64, 2>::builder(
         DT,
         &[(Feedback::Linear { k: 1.0 }, None)],
@@ -112,21 +138,21 @@ fn bad_configurations_and_inputs_are_named() {
         5.0,
     )
     .integral(true)
-    .build()
-    .unwrap();
-    assert_eq!(err(integral, 1.0), "integral");
+    .observer(Some(obs))
+    .cancellation_limit(Some(1.0));
+    assert_eq!(err(integral), "integral");
     let bad = ExtendedHighGain { b0: 0.0, ..obs };
-    assert_eq!(
-        ObservedController::new(law(None), bad, 1.0)
-            .unwrap_err()
-            .parameter,
-        "b0"
-    );
-    let mut ctrl = ObservedController::new(law(None), obs, 1.0).unwrap();
+    assert_eq!(observed(bad, 1.0).unwrap_err().parameter, "b0");
+    // The default bound: half the output range.
+    let cfg = with(None).output_limits(Some((-3.0, 5.0))).build().unwrap();
+    assert_eq!(cfg.cancellation_limit(), Some(4.0));
+    assert_eq!(cfg.observer(), Some(&obs));
+    assert_eq!(cfg.to_builder().build(), Ok(cfg));
+    let mut ctrl = observed(obs, 1.0).unwrap();
     assert_eq!(ctrl.step(f64::NAN), Err(StepError::NonFiniteInput));
     assert_eq!(
         ctrl.step_applied(0.1, Some(f64::INFINITY)),
-        Err(StepError::NonFiniteInput)
+        Err(StepError::NonFiniteApplied)
     );
     let before = ctrl;
     assert_eq!(ctrl.step(f64::INFINITY), Err(StepError::NonFiniteInput));
@@ -142,13 +168,13 @@ fn an_applied_input_drives_the_observer() {
     // Told that the actuator gave 0 instead of the command, the observer's next
     // estimate differs from the one that takes the command as applied.
     let obs = ExtendedHighGain::binomial(0.02, G);
-    let mut a = ObservedController::new(law(None), obs, 1.0).unwrap();
+    let mut a = observed(obs, 1.0).unwrap();
     let mut b = a;
     let ua = a.step(0.5).unwrap();
     assert_eq!(b.step(0.5), Ok(ua));
     a.step(0.49).unwrap();
     b.step_applied(0.49, Some(0.0)).unwrap();
-    assert!(ua != 0.0 && a.estimate().0 != b.estimate().0);
+    assert!(ua != 0.0 && a.estimate() != b.estimate());
 }
 
 mod adversarial {
@@ -179,12 +205,12 @@ mod adversarial {
         ) {
             let hold = if foh { Discretization::Foh } else { Discretization::Exact };
             let obs = ExtendedHighGain::binomial(mu, b0).with_discretization(hold);
-            let mut ctrl = ObservedController::new(law(None), obs, delta).unwrap();
+            let mut ctrl = observed(obs, delta).unwrap();
             for (e, applied) in prefix {
                 let before = ctrl;
                 match ctrl.step_applied(e, applied) {
                     Ok(u) => prop_assert!(u.is_finite()),
-                    Err(StepError::NonFiniteInput) => prop_assert_eq!(ctrl, before),
+                    Err(StepError::NonFiniteInput | StepError::NonFiniteApplied) => prop_assert_eq!(ctrl, before),
                     Err(_) => {}
                 }
             }
