@@ -39,6 +39,7 @@ CONSTRUCTIBLE = [
     "Controller",
     "ControllerBank",
     "HighGain",
+    "Observer",
     "Linear",
     "FiniteTime",
     "FixedTime",

@@ -29,6 +29,7 @@ __all__ = [
     "Lockstep",
     "MoulayDiscontinuous",
     "Nonsingular",
+    "Observer",
     "PaperLanes",
     "PaperPlant",
     "Skewed",
@@ -764,6 +765,80 @@ class HighGain:
         """The prefilter's time constant, s (0: none)."""
     def __getnewargs__(self) -> tuple[float, list[float], str, list[float] | None, float]: ...
 
+@final
+class Observer:
+    """The extended high-gain observer: disturbance estimation (beyond the paper).
+
+    Estimates the error's derivatives and the lumped term ``L`` of
+    ``z1^(n) = L + b0 u`` (everything the nominal input gain ``b0`` does not
+    explain: the plant's own dynamics, loads, the gain error) from the error
+    samples and the applied input. Passed as ``observer=`` to
+    :class:`Controller`, it replaces the differentiator, and the command
+    becomes ``u = v - clip(Lhat / b0, -delta, delta)``: the law's ``v`` on the
+    same manifold and envelope holds only what the cancellation does not,
+    which removes the steady error of a holding input. Frozen, comparable
+    and picklable.
+
+    Parameters
+    ----------
+    mu : float
+        The time constant ``mu``, s (``> 0``): smaller is faster and
+        amplifies noise more (about 20 sample periods is a start).
+    b0 : float
+        The nominal input gain, output units per input unit per s^n
+        (nonzero; its sign is the control direction). A 20 % error is
+        lumped into ``L`` and cancelled with it.
+    a : sequence of float, default None
+        The coefficients ``(a1, ..., an, a(n+1))`` of
+        ``s^(n+1) + a1 s^n + ... + a(n+1)``, Hurwitz, one more than the
+        order; None: the binomial ``(s + 2)^(n+1)`` at the controller's order.
+    discretization : {'exact', 'foh'}, default 'exact'
+        How the measurement is sampled: held ('exact') or the straight line
+        through the samples ('foh': no lag from the hold on a moving error).
+
+    Raises
+    ------
+    famcc.ConfigError
+        ``mu <= 0``, ``b0 == 0``, coefficients that are not Hurwitz or of a
+        length outside ``2..MAX_ORDER + 1``, or another discretization
+        (naming ``observer_mu``, ``b0``, ``observer_a``,
+        ``observer_discretization``).
+
+    Examples
+    --------
+    >>> import famcc
+    >>> obs = famcc.Observer(0.02, 1.5)
+    >>> obs.mu, obs.b0, obs.a, obs.discretization
+    (0.02, 1.5, None, 'exact')
+    >>> c = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=1.0, p=0.7), constraint="lateral",
+    ...                      eps=0.1, k_u=5.0, observer=obs, cancellation_limit=4.0)
+    >>> c.config()["observer"] == obs, c.config()["differentiator"] is None
+    (True, True)
+    """
+
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    def __new__(
+        cls,
+        mu: float,
+        b0: float,
+        a: Sequence[float] | None = None,
+        discretization: Literal["exact", "foh"] = "exact",
+    ) -> Observer: ...
+    @property
+    def mu(self) -> float:
+        """The time constant, s."""
+    @property
+    def b0(self) -> float:
+        """The nominal input gain."""
+    @property
+    def a(self) -> tuple[float, ...] | None:
+        """The coefficients ``(a1, ..., a(n+1))``, or None (the binomial default)."""
+    @property
+    def discretization(self) -> str:
+        """'exact' or 'foh'."""
+    def __eq__(self, value: object, /) -> bool: ...
+    def __getnewargs__(self) -> tuple[float, float, list[float] | None, str]: ...
+
 # -- controller ------------------------------------------------------------------
 
 @final
@@ -838,7 +913,12 @@ class Diagnostics:
         """Steps at which |xi| had to be clamped below 1."""
     @property
     def v_unlimited(self) -> float:
-        """The law's output -k_u Gamma(xi) before the output limits."""
+        """The law's output -k_u Gamma(xi) - cancellation before the output limits."""
+    @property
+    def cancellation(self) -> float:
+        """The observer's cancellation clip(Lhat / b0, -delta, delta) in the
+        output (0.0 without an observer).
+        """
     @property
     def integral(self) -> float | None:
         """The integral I of the error the output used (integral=True), else None."""
@@ -958,6 +1038,18 @@ class Controller:
         ``initial_output`` when that is feasible (with integral action by the
         choice of ``I_0``; without, by rescaling the latched widths), else the
         nearest feasible output.
+    observer : Observer, default None
+        Disturbance estimation (beyond the paper, docs/observer.md): the
+        extended observer replaces the differentiator (``differentiator`` must
+        be 'auto', which then means none, or None) and the output becomes
+        ``u = v - clip(Lhat / b0, -delta, delta)``, ``v`` the same law on the
+        observer's estimates; the output limits apply to ``u``. Needs
+        ``integral=False`` (the estimate of the lumped term removes the steady
+        error instead). None: the paper's controller.
+    cancellation_limit : float, default None
+        The bound ``delta > 0`` of the observer's cancellation, input units.
+        None: half the range of ``output_limits`` (``U`` for ``(-U, U)``);
+        required with an observer and no finite ``output_limits``.
 
     Raises
     ------
@@ -1028,6 +1120,8 @@ class Controller:
         output_limits: tuple[float, float] | None = None,
         rate_limit: float | None = None,
         initial_output: float | None = None,
+        observer: Observer | None = None,
+        cancellation_limit: float | None = None,
     ) -> Controller: ...
     @property
     def dt(self) -> float:
@@ -1044,6 +1138,11 @@ class Controller:
     @property
     def diagnostics(self) -> Diagnostics:
         """What the last step did."""
+    @property
+    def lumped(self) -> float:
+        """The observer's estimate ``Lhat`` of the lumped term, output units
+        per s^n (0.0 without an observer; ``Lhat / b0`` is what it cancels).
+        """
     @property
     def estimate(self) -> _F64Array:
         """The estimate the next step will use (NumPy array; with integral

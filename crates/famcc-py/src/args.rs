@@ -7,6 +7,7 @@ use crate::differentiator::HighGain;
 use crate::errors::{config_err_got, ConfigFault};
 use crate::laws::Law;
 use crate::names::{ConstraintName, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
+use crate::observer::Observer;
 use crate::skews::SkewSpec;
 use crate::spec::{RhoE, Spec};
 use famcc_core::config::{check_order, MAX_ORDER};
@@ -55,6 +56,8 @@ pub struct Args<'a, 'py> {
     pub output_limits: Option<(f64, f64)>,
     pub rate_limit: Option<f64>,
     pub initial_output: Option<f64>,
+    pub observer: Option<Observer>,
+    pub cancellation_limit: Option<f64>,
 }
 
 /// One value for every stage, or a list or tuple of exactly `n`; `parameter`
@@ -205,7 +208,11 @@ impl Args<'_, '_> {
         let laws = parse_laws(self.feedback, order, self.integral)?;
         let skews = parse_skews(self.skew, order, self.integral)?;
         let constraint = parse_constraint(CONSTRAINT.parse(self.constraint, "constraint")?, self.eps)?;
-        let differentiator = parse_differentiator(self.differentiator, order)?;
+        // The observer replaces the differentiator: "auto" then means none.
+        let differentiator = match (&self.observer, &self.differentiator) {
+            (Some(_), Some(DiffArg::Name(s))) if s == AUTO => None,
+            _ => parse_differentiator(self.differentiator, order)?,
+        };
         check_initial_derivatives(self.initial_derivatives.as_deref(), order)?;
         let rho_e = parse_rho_e(self.rho_e)?;
         Ok(Spec {
@@ -227,6 +234,8 @@ impl Args<'_, '_> {
             output_limits: self.output_limits,
             rate_limit: self.rate_limit,
             initial_output: self.initial_output,
+            observer: self.observer,
+            cancellation_limit: self.cancellation_limit,
         })
     }
 }

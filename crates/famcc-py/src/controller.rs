@@ -9,6 +9,7 @@ use crate::errors::{kind, step_err, ConfigFault, StepFault};
 use crate::module::module_function;
 use crate::names::{CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::number::{Int, Num, Text};
+use crate::observer::Observer;
 use crate::spec::ControllerSpec;
 use crate::spec::Spec;
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
@@ -36,14 +37,14 @@ impl PyController {
         rho_e = Some(RhoArg::Name(String::from(AUTO))), differentiator = Some(DiffArg::Name(String::from(AUTO))),
         latch = text(LATCH.default_name()), transition = text(TRANSITION.default_name()), initial_derivatives = None,
         dtype = text(DTYPE.default_name()), integral = false, output_limits = None, rate_limit = None,
-        initial_output = None),
+        initial_output = None, observer = None, cancellation_limit = None),
         // The defaults above are famcc-core's; pyo3 shows only literal ones, so
         // the Python signature spells them out (tests/test_docs.py checks that
         // each equals the default in effect).
         text_signature = "(order, dt, feedback=None, *, skew=None, constraint='longitudinal', eps, \
             settle_time=1.0, k0=2.0, k_u, gamma='log', rho_e='auto', differentiator='auto', latch='paper', \
             transition='exponential', initial_derivatives=None, dtype='float64', integral=False, \
-            output_limits=None, rate_limit=None, initial_output=None)")]
+            output_limits=None, rate_limit=None, initial_output=None, observer=None, cancellation_limit=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         order: Int,
@@ -66,6 +67,8 @@ impl PyController {
         output_limits: Option<(Num, Num)>,
         rate_limit: Option<Num>,
         initial_output: Option<Num>,
+        observer: Option<Bound<'_, Observer>>,
+        cancellation_limit: Option<Num>,
         py: Python<'_>,
     ) -> PyResult<Self> {
         // Numbers are never bools, and a wrong type names its argument
@@ -91,6 +94,8 @@ impl PyController {
             output_limits: output_limits.map(|(lo, hi)| (lo.0, hi.0)),
             rate_limit: rate_limit.map(|r| r.0),
             initial_output: initial_output.map(|u| u.0),
+            observer: observer.map(|o| o.get().clone()),
+            cancellation_limit: cancellation_limit.map(|c| c.0),
         }
         .parse()?;
         Self::from_spec_warned(py, spec)
@@ -297,6 +302,13 @@ impl PyController {
     #[getter]
     fn estimate<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.core.estimate())
+    }
+
+    /// The observer's estimate ``Lhat`` of the lumped term, output units
+    /// per s^n (0.0 without an observer; ``Lhat / b0`` is what it cancels).
+    #[getter]
+    fn lumped(&self) -> f64 {
+        self.core.lumped()
     }
 
     /// The state as a float vector.

@@ -64,6 +64,8 @@ fn design_spec(d: &Design, req: &Requirements) -> Spec {
         output_limits: None,
         rate_limit: None,
         initial_output: None,
+        observer: None,
+        cancellation_limit: None,
     }
 }
 

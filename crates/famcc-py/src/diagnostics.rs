@@ -70,9 +70,13 @@ pub struct Diagnostics {
     /// The output returned (after the output limits, when configured).
     #[pyo3(get)]
     v: f64,
-    /// The law's output -k_u Gamma(xi) before the output limits.
+    /// The law's output -k_u Gamma(xi) - cancellation before the output limits.
     #[pyo3(get)]
     v_unlimited: f64,
+    /// The observer's cancellation clip(Lhat / b0, -delta, delta) in the
+    /// output (0.0 without an observer).
+    #[pyo3(get)]
+    cancellation: f64,
     /// The integral I of the error the output used (integral=True), else None.
     #[pyo3(get)]
     integral: Option<f64>,
@@ -113,6 +117,7 @@ impl Diagnostics {
             clamp_count: d.clamp_count,
             v: f(d.v),
             v_unlimited: f(d.v_unlimited),
+            cancellation: f(d.cancellation),
             integral: d.integral.map(f),
             integrating: d.integrating,
             unsaturated_expansions: d.unsaturated_expansions,

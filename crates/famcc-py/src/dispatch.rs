@@ -168,6 +168,11 @@ impl Core {
         with_core!(self, c => c.estimate().iter().map(|x| x.to_f64_lossless()).collect())
     }
 
+    /// The observer's estimate of the lumped term (0 without one).
+    pub fn lumped(&self) -> f64 {
+        with_core!(self, c => c.lumped().to_f64_lossless())
+    }
+
     pub fn state(&self) -> Vec<f64> {
         with_core!(self, c => state::to_vec(c))
     }

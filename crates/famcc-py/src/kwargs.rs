@@ -68,6 +68,12 @@ impl Spec {
         if let Some(u) = self.initial_output {
             d.set_item("initial_output", u)?;
         }
+        if let Some(o) = &self.observer {
+            d.set_item("observer", o.clone())?;
+        }
+        if let Some(c) = self.cancellation_limit {
+            d.set_item("cancellation_limit", c)?;
+        }
         Ok(d)
     }
 

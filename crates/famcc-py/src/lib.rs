@@ -45,6 +45,7 @@ mod laws;
 mod module;
 mod names;
 mod number;
+mod observer;
 mod orders;
 mod paper;
 mod replace;
@@ -71,6 +72,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<skews::Smooth>()?;
     m.add_class::<skews::Nonsingular>()?;
     m.add_class::<differentiator::HighGain>()?;
+    m.add_class::<observer::Observer>()?;
     m.add_class::<controller::PyController>()?;
     m.add_class::<call_floor::CallFloor>()?;
     m.add_class::<diagnostics::Diagnostics>()?;

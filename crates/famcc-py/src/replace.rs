@@ -11,6 +11,7 @@ use crate::args::{
 };
 use crate::names::{constraint_name, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::number::{Int, Num, Text};
+use crate::observer::Observer;
 use crate::spec::Spec;
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use pyo3::exceptions::PyTypeError;
@@ -104,6 +105,10 @@ impl Spec {
             "output_limits" => self.output_limits = output_limits(v)?,
             "rate_limit" => self.rate_limit = opt_num(v, key)?,
             "initial_output" => self.initial_output = opt_num(v, key)?,
+            "observer" => {
+                self.observer = arg::<Option<Bound<'_, Observer>>>(v, key)?.map(|o| o.get().clone())
+            }
+            "cancellation_limit" => self.cancellation_limit = opt_num(v, key)?,
             k if SHAPE_KEYS.contains(&k) => {
                 return Err(PyTypeError::new_err(format!(
                     "replace() cannot change '{k}' (it sets the shape of the configuration: \
@@ -121,7 +126,7 @@ impl Spec {
 }
 
 /// The keyword arguments `spec_from_kwargs` knows.
-const KEYS: [&str; 20] = [
+const KEYS: [&str; 22] = [
     "order",
     "dt",
     "feedback",
@@ -142,6 +147,8 @@ const KEYS: [&str; 20] = [
     "output_limits",
     "rate_limit",
     "initial_output",
+    "observer",
+    "cancellation_limit",
 ];
 
 /// The spec of the constructor's keyword arguments (as `config()` gives
@@ -204,6 +211,10 @@ pub fn spec_from_kwargs(kw: &Bound<'_, PyDict>) -> PyResult<Spec> {
         output_limits: get("output_limits")?.map_or(Ok(None), |v| output_limits(&v))?,
         rate_limit: opt("rate_limit")?,
         initial_output: opt("initial_output")?,
+        observer: get("observer")?.map_or(Ok(None), |v| {
+            arg::<Option<Bound<'_, Observer>>>(&v, "observer").map(|o| o.map(|o| o.get().clone()))
+        })?,
+        cancellation_limit: opt("cancellation_limit")?,
     }
     .parse()
 }

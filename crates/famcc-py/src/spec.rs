@@ -5,6 +5,7 @@
 use crate::differentiator::HighGain;
 use crate::laws::Law;
 use crate::names::DType;
+use crate::observer::Observer;
 use crate::orders::to_array;
 use crate::skews::SkewSpec;
 use famcc_core::{Config, ConfigError, Constraint, Gamma, Latch, Real, Transition};
@@ -43,6 +44,10 @@ pub struct Spec {
     pub output_limits: Option<(f64, f64)>,
     pub rate_limit: Option<f64>,
     pub initial_output: Option<f64>,
+    /// The extended observer (replaces the differentiator; docs/observer.md).
+    pub observer: Option<Observer>,
+    /// The cancellation's bound `delta` (None: famcc-core's default).
+    pub cancellation_limit: Option<f64>,
 }
 
 impl Spec {
@@ -88,6 +93,17 @@ impl Spec {
                 .collect();
             b = b.initial_derivatives(to_array::<T, N>(&full));
         }
+        if let Some(o) = &self.observer {
+            let core = o.core::<T, N>().ok_or(ConfigError::new(
+                "observer_a",
+                "must have order + 1 coefficients (or None: the binomial default)",
+            ))?;
+            b = b
+                .observer(Some(core))
+                .cancellation_limit(self.cancellation_limit.map(t));
+        } else if self.cancellation_limit.is_some() {
+            b = b.cancellation_limit(self.cancellation_limit.map(t));
+        }
         b.integral(self.integral)
             .output_limits(self.output_limits.map(|(lo, hi)| (t(lo), t(hi))))
             .rate_limit(self.rate_limit.map(t))
@@ -132,6 +148,8 @@ impl Spec {
             output_limits: cfg.output_limits().map(|(lo, hi)| (f(lo), f(hi))),
             rate_limit: cfg.rate_limit().map(f),
             initial_output: cfg.initial_output().map(f),
+            observer: cfg.observer().map(Observer::from_core),
+            cancellation_limit: cfg.cancellation_limit().map(f),
         }
     }
 }
