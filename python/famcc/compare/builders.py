@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
@@ -51,22 +52,28 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
         )
     if kind != "famcc":
         raise ValueError(f"kind must be one of {', '.join(_KINDS)}, got {kind!r}")
-    # the discretization famcc picks for this mu at this dt (the first-order
-    # hold once mu < 10 dt up to order 3, Tustin from order 4 on)
-    hg = _core.HighGain.default(
-        n, mu=p["mu"], discretization=_core.HighGain.discretization_for(n, dt, p["mu"])
-    )
+    # the observer with the nominal gain b0 (as ADRC's), its measurement on the
+    # first-order hold once mu < 10 dt; the cancellation bounded by the actuator's range
+    mu_o = p["obs_mu"]
+    obs = _core.Observer(mu_o, p["b0"], discretization="foh" if mu_o < 10.0 * dt else "exact")
+    delta = max(abs(u_limits[0]), abs(u_limits[1]))
     # the envelope latch of the authors' code, as `famcc reproduce` (variant "code") uses
     common = {
         "settle_time": p["settle_time"],
         "k_u": p["k_u"],
-        "differentiator": hg,
+        "observer": obs,
+        "cancellation_limit": delta if math.isfinite(delta) else 100.0 * p["k_u"],
         "latch": "authors",
     }
     k, eps = p["k"], p["eps"]
     if p["family"] == "finite-time":
         return _core.Controller(
-            n, dt, _core.FiniteTime(k=k, p=0.5), constraint="lateral", eps=eps, **common
+            n, dt, _core.FiniteTime(k=k, p=p.get("p", 0.5)), constraint="lateral", eps=eps, **common
+        )
+    if p["family"] == "linear":  # Linear(k) stages, LoMC on s ~ k^(n-1) z1, flexible boundary
+        stages = [_core.Linear(k) for _ in range(n - 1)]
+        return _core.Controller(
+            n, dt, stages, constraint="longitudinal", eps=eps * k ** (n - 1), **common
         )
     if p["family"] == "variable-exponent":  # example 2, scaled: eps_z = eps, LoMC 1.5 eps
         return _core.Controller(

@@ -22,6 +22,7 @@ from famcc.compare.findings import (
 from famcc.compare.plants import _case
 from famcc.compare.runs import run
 from famcc.compare.spaces import _KINDS
+from famcc.compare.tuning import NOISE_CHECK_CONDITION, NOISE_CHECKS
 
 
 def write_report(result: dict[str, Any], out: str | Path, *, figures: bool = True) -> Path:
@@ -142,9 +143,11 @@ def _intro(result: dict[str, Any]) -> list[str]:
         ),
         "",
         (
-            "**Controllers.** famcc: the paper's design family of each plant "
-            "(finite-time LaMC, variable-exponent LoMC + SSMD, or recursive fixed-time "
-            "LoMC + NSMD) with its flexible boundary; LMCC: famcc with `Linear` stages and "
+            "**Controllers.** famcc: its law with the extended observer (docs/observer.md: "
+            "the lumped term estimated with `b0` = the plant's nominal gain and cancelled, "
+            "bounded by the actuator's range), the finite-time law on the lateral constraint "
+            "at order 2 and `Linear` stages on the longitudinal one above, with its flexible "
+            "boundary; LMCC: famcc with `Linear` stages and "
             "no flexible boundary (`rho_e=None`), the low-complexity PPC special case the "
             "paper names; PID: simple-pid with its output limits (anti-windup) and a "
             "first-order measurement filter; ADRC: linear ADRC with an ESO, bandwidth-"
@@ -159,12 +162,15 @@ def _intro(result: dict[str, Any]) -> list[str]:
         (
             f"**Tuning (the same for all four).** Budget {b} closed-loop runs per controller "
             f"and plant on the nominal plant at 1 kHz: the controller's documented default "
-            "(famcc: the paper's design of the example, scaled by the plant's holding input "
-            "H elsewhere; PID and ADRC: pole placement at 10 rad/s), "
-            f"{b - b // 2 - 1} Latin-hypercube points over its documented ranges "
-            "(`famcc.compare.space`, every range log-uniform and scaled by the plant's gain "
-            "G, H and the band), then "
-            f"{b // 2} in {rounds} rounds of Gaussian steps around the best so far. "
+            "(famcc: its law with the observer and `b0 = G`, scaled by the plant's holding "
+            "input H; PID and ADRC: pole placement at 10 rad/s), "
+            "Latin-hypercube points over its documented ranges "
+            "(`famcc.compare.space`, scaled by the plant's gain G, H and the band), then "
+            f"rounds ({rounds}) of Gaussian steps around the best so far: half the budget "
+            "each, famcc's own budget less its noise checks "
+            f"({NOISE_CHECKS['famcc']} runs: its best distinct candidates run again under "
+            f"{NOISE_CHECK_CONDITION}, and the one with the least sum of the two objectives is "
+            "chosen, as an observer tuned without noise picks a bandwidth noise punishes). "
             "Objective `J = IAE / (band T) + 0.01 TV(u) / H + 10 [never settled]`, "
             "`J = 1e6` when diverged (`H` the plant's holding input). The best candidate is "
             "then run unchanged under every condition."
@@ -175,7 +181,7 @@ def _intro(result: dict[str, Any]) -> list[str]:
             "measurement noise, white Gaussian with std 1e-4, 1e-3, 1e-2 output units; "
             f"dispersion: {meta['dispersion_plants']} plants with every physical parameter "
             f"times U(0.7, 1.3), the worst of them shown; 200 Hz (the same parameters; "
-            "famcc's differentiator rediscretized by its rule). "
+            "famcc's observer and LMCC's differentiator discretized for it). "
             "A run diverges when |z1| exceeds 10 max(|z1(0)|, 1) or a value becomes non-finite."
         ),
         "",
