@@ -266,7 +266,7 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// apart (controller/advance.rs).
     #[inline(always)]
     pub(crate) fn steady_fast(&self) -> bool {
-        self.unlimited() && !self.hgd.as_ref().is_some_and(Recursion::has_feedthrough) && !self.observing()
+        self.unlimited() && !self.hgd.as_ref().is_some_and(Recursion::has_feedthrough)
     }
 
     /// True with an observer (feature `observer`).

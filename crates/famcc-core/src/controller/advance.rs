@@ -32,7 +32,13 @@ impl<T: Real, const N: usize> Controller<T, N> {
         // the health count and the feedthrough are known to do nothing: that
         // steady step is compiled apart, so they cost it nothing.
         if applied.is_none() && self.config.steady_fast() {
-            self.control_then_advance_from::<true>(false, measured, one_off_dt, None)
+            // The observer's steady step is compiled apart too (without the
+            // feature `observing` is false and this copy is dead code).
+            if self.config.observing() {
+                self.control_then_advance_from::<true, true>(false, measured, one_off_dt, None)
+            } else {
+                self.control_then_advance_from::<true, false>(false, measured, one_off_dt, None)
+            }
         } else {
             self.control_then_advance_general(measured, one_off_dt, applied)
         }
@@ -54,15 +60,16 @@ impl<T: Real, const N: usize> Controller<T, N> {
         applied: Option<T>,
     ) -> Result<T, StepError> {
         let first = !self.state.started;
-        self.control_then_advance_from::<false>(first, measured, one_off_dt, applied)
+        self.control_then_advance_from::<false, true>(first, measured, one_off_dt, applied)
     }
 
     /// [`Self::control_then_advance`] for a first step (`first`) or a later
     /// one, and for a configuration with nothing to limit or integrate and
     /// no told input (`UNLIMITED`, see [`crate::Config::unlimited`]; never
-    /// a first step).
+    /// a first step); `OBSERVED` false only for that step without an observer
+    /// (which then skips the observer's checks; observe.rs).
     #[inline(always)]
-    fn control_then_advance_from<const UNLIMITED: bool>(
+    fn control_then_advance_from<const UNLIMITED: bool, const OBSERVED: bool>(
         &mut self,
         first: bool,
         measured: Measured<T, N>,
@@ -104,7 +111,9 @@ impl<T: Real, const N: usize> Controller<T, N> {
         let carried = hgd.is_some();
         // With an observer its estimate replaces the differentiator's (observe.rs).
         let mut lumped = T::zero();
-        let observed = if UNLIMITED {
+        // `OBSERVED`: an observer may be configured (false on the plain steady step only).
+        let plain = UNLIMITED && !OBSERVED;
+        let observed = if plain {
             None
         } else {
             self.observe(first, &measured, applied)
@@ -202,7 +211,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
             eval = constraint.evaluate(c.last_law(), &m, &mut self.state.envelopes, None, t, flexible);
         }
         // With an observer the command is u = v - c (config/observer.rs).
-        let cancel = if UNLIMITED {
+        let cancel = if plain {
             T::zero()
         } else {
             self.cancellation(lumped)

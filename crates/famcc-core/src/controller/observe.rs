@@ -45,7 +45,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
     }
 
     #[cfg(feature = "observer")]
-    #[inline(never)]
+    #[inline]
     fn observation(
         &self,
         o: &crate::config::Observed<T, N>,
