@@ -30,10 +30,9 @@ impl<T: Real, const N: usize> Controller<T, N> {
         // Without output limits, integral action, a told input or the
         // first-order hold's feedthrough, the limits, the integral separation,
         // the health count and the feedthrough are known to do nothing: that
-        // steady step is compiled apart, so they cost it nothing.
+        // steady step is compiled apart (the observer's its own copy, dead code
+        // without the feature), so they cost it nothing.
         if applied.is_none() && self.config.steady_fast() {
-            // The observer's steady step is compiled apart too (without the
-            // feature `observing` is false and this copy is dead code).
             if self.config.observing() {
                 self.control_then_advance_from::<true, true>(false, measured, one_off_dt, None)
             } else {
@@ -66,8 +65,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
     /// [`Self::control_then_advance`] for a first step (`first`) or a later
     /// one, and for a configuration with nothing to limit or integrate and
     /// no told input (`UNLIMITED`, see [`crate::Config::unlimited`]; never
-    /// a first step); `OBSERVED` false only for that step without an observer
-    /// (which then skips the observer's checks; observe.rs).
+    /// a first step); `OBSERVED`: that step may have an observer (observe.rs).
     #[inline(always)]
     fn control_then_advance_from<const UNLIMITED: bool, const OBSERVED: bool>(
         &mut self,
@@ -109,9 +107,9 @@ impl<T: Real, const N: usize> Controller<T, N> {
         // the law, so that its values need not live through the law's calls.
         // Without a differentiator the next step measures its own vector.
         let carried = hgd.is_some();
-        // With an observer its estimate replaces the differentiator's (observe.rs).
+        // With an observer its estimate replaces the differentiator's (observe.rs;
+        // `OBSERVED` is false on the plain steady step only).
         let mut lumped = T::zero();
-        // `OBSERVED`: an observer may be configured (false on the plain steady step only).
         let plain = UNLIMITED && !OBSERVED;
         let observed = if plain {
             None
