@@ -28,7 +28,7 @@ class Motor:
         return np.array([x[1], -2.0 * np.tanh(5.0 * x[1]) - 0.5 * x[1] + GAIN * u + load])
 
 
-def controller(**kw: Any) -> famcc.Controller:
+def controller(limits: tuple[float, float] = (-6.0, 6.0), **kw: Any) -> famcc.Controller:
     return famcc.Controller(
         2,
         1e-3,
@@ -36,7 +36,7 @@ def controller(**kw: Any) -> famcc.Controller:
         constraint="lateral",
         eps=0.05,
         k_u=4.0,
-        output_limits=(-6.0, 6.0),
+        output_limits=limits,
         **kw,
     )
 
@@ -77,16 +77,7 @@ def test_a_bounded_cancellation_leaves_the_rest_to_the_law() -> None:
 def test_the_default_bound_is_half_the_output_range() -> None:
     ctrl = controller(observer=famcc.Observer(0.02, GAIN))
     assert ctrl.spec.build().config()["observer"] == famcc.Observer(0.02, GAIN)
-    big = famcc.Controller(
-        2,
-        1e-3,
-        famcc.FiniteTime(k=2.0, p=0.7),
-        constraint="lateral",
-        eps=0.05,
-        k_u=4.0,
-        output_limits=(-1.0, 3.0),
-        observer=famcc.Observer(0.02, GAIN),
-    )
+    big = controller((-1.0, 3.0), observer=famcc.Observer(0.02, GAIN))
     # (3 - -1) / 2 = 2: a load needing 3 is cancelled only up to 2.
     for _ in range(3000):
         big.step(0.2)
@@ -154,8 +145,7 @@ def test_config_pickle_and_state_carry_the_observer() -> None:
     for k in range(200):
         assert twin.step(0.1 * k * 1e-3) == ctrl.step(0.1 * k * 1e-3)
     # A plain controller refuses a state with an estimate of the lumped term.
-    plain = famcc.Controller(2, 1e-3, famcc.FiniteTime(k=2.0, p=0.7), constraint="lateral",
-                             eps=0.05, k_u=4.0, output_limits=(-6.0, 6.0))  # fmt: skip
+    plain = controller()
     with pytest.raises(famcc.ConfigError) as info:
         plain.set_state(state)
     assert info.value.parameter in {"state.config", "state.lhat"}

@@ -40,38 +40,23 @@ fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretizat
     Controller::new(cfg)
 }
 
+type Group<'a> = criterion::BenchmarkGroup<'a, criterion::measurement::WallTime>;
+
+/// The plain workload `name`, then its law on the observer with each hold
+/// (interleaved: each plain workload right before its observed ones).
+fn bench_example<const N: usize>(g: &mut Group<'_>, name: &str, w: &step::Workload<Controller<f64, N>, f64>) {
+    step::bench_phases(g, &format!("{name}-plain/f64"), w, false);
+    for (hold, disc) in [("exact", Discretization::Exact), ("foh", Discretization::Foh)] {
+        let name = format!("{name}-observed-{hold}/f64");
+        step::bench_phases(g, &name, &w.with(observed(&w.starts[0], disc)), false);
+    }
+}
+
 fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("observed");
     g.throughput(Throughput::Elements(step::CHUNK as u64));
-    let ex1 = step::ex1::<f64>(Discretization::Exact);
-    let ex3 = step::ex3::<f64>(Discretization::Exact);
-    // Interleaved: each plain workload right before its observed ones.
-    step::bench_phases(&mut g, "ex1-plain/f64", &ex1, false);
-    step::bench_phases(
-        &mut g,
-        "ex1-observed-exact/f64",
-        &ex1.with(observed(&ex1.starts[0], Discretization::Exact)),
-        false,
-    );
-    step::bench_phases(
-        &mut g,
-        "ex1-observed-foh/f64",
-        &ex1.with(observed(&ex1.starts[0], Discretization::Foh)),
-        false,
-    );
-    step::bench_phases(&mut g, "ex3-plain/f64", &ex3, false);
-    step::bench_phases(
-        &mut g,
-        "ex3-observed-exact/f64",
-        &ex3.with(observed(&ex3.starts[0], Discretization::Exact)),
-        false,
-    );
-    step::bench_phases(
-        &mut g,
-        "ex3-observed-foh/f64",
-        &ex3.with(observed(&ex3.starts[0], Discretization::Foh)),
-        false,
-    );
+    bench_example(&mut g, "ex1", &step::ex1::<f64>(Discretization::Exact));
+    bench_example(&mut g, "ex3", &step::ex3::<f64>(Discretization::Exact));
     g.finish();
 }
 

@@ -98,13 +98,10 @@ impl Spec {
                 "observer_a",
                 "must have order + 1 coefficients (or None: the binomial default)",
             ))?;
-            b = b
-                .observer(Some(core))
-                .cancellation_limit(self.cancellation_limit.map(t));
-        } else if self.cancellation_limit.is_some() {
-            b = b.cancellation_limit(self.cancellation_limit.map(t));
+            b = b.observer(Some(core));
         }
-        b.integral(self.integral)
+        b.cancellation_limit(self.cancellation_limit.map(t))
+            .integral(self.integral)
             .output_limits(self.output_limits.map(|(lo, hi)| (t(lo), t(hi))))
             .rate_limit(self.rate_limit.map(t))
             .initial_output(self.initial_output.map(t))
