@@ -54,18 +54,22 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
         raise ValueError(f"kind must be one of {', '.join(_KINDS)}, got {kind!r}")
     # the observer with the nominal gain b0 (as ADRC's), its measurement on the
     # first-order hold once mu < 10 dt; the cancellation bounded by the actuator's range
-    mu_o = p["obs_mu"]
+    k, eps = p["k"], p["eps"]
+    if "u_ratio" in p:  # linear stages: the poles' ratios to k (spaces.famcc_candidates)
+        mu_o = 1.0 / (p["obs_ratio"] * k)
+        k_u = p["u_ratio"] * k**n * eps / (2.0 * abs(p["b0"]))
+    else:
+        mu_o, k_u = p["obs_mu"], p["k_u"]
     obs = _core.Observer(mu_o, p["b0"], discretization="foh" if mu_o < 10.0 * dt else "exact")
     delta = max(abs(u_limits[0]), abs(u_limits[1]))
     # the envelope latch of the authors' code, as `famcc reproduce` (variant "code") uses
     common = {
         "settle_time": p["settle_time"],
-        "k_u": p["k_u"],
+        "k_u": k_u,
         "observer": obs,
-        "cancellation_limit": delta if math.isfinite(delta) else 100.0 * p["k_u"],
+        "cancellation_limit": delta if math.isfinite(delta) else 100.0 * k_u,
         "latch": "authors",
     }
-    k, eps = p["k"], p["eps"]
     if p["family"] == "finite-time":
         return _core.Controller(
             n, dt, _core.FiniteTime(k=k, p=p.get("p", 0.5)), constraint="lateral", eps=eps, **common
