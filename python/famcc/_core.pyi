@@ -47,6 +47,7 @@ __all__ = [
     "paper_corollary_bound",
     "paper_design",
     "paper_input_limits",
+    "paper_nominal_gain",
     "rho",
     "skewed",
     "transition_s",
@@ -1964,6 +1965,7 @@ class Lockstep:
 def paper_design(example: int, variant: str) -> dict[str, Any]: ...
 def paper_corollary_bound(example: int) -> float: ...
 def paper_input_limits(example: int, saturated: bool) -> tuple[float, float]: ...
+def paper_nominal_gain(example: int) -> float: ...
 
 # -- functions -------------------------------------------------------------------
 

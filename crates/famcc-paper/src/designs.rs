@@ -241,6 +241,22 @@ pub fn corollary_bound<T: Real>(example: Example) -> T {
     }
 }
 
+/// The plant's nominal input gain `G0 = 2` of every example: the product of
+/// the constant terms of the chain's gains (eq. (44): `g1 = 1 + ...`,
+/// `g2 = 2 + ...`; eq. (68): `g1 = g2 = 1 + ...`, `g3 = 2 + ...`). The true
+/// `G` varies about it (1.9-2.5 along example 1's run, 1.7-2.9 along
+/// example 3's); it is the observer's `b0` (docs/observer.md).
+///
+/// ```
+/// use famcc_paper::designs::{nominal_gain, Example};
+/// assert_eq!(nominal_gain::<f64>(Example::Rfc), 2.0);
+/// ```
+pub fn nominal_gain<T: Real>(example: Example) -> T {
+    match example {
+        Example::FiniteTime | Example::VariableExponent | Example::Rfc => lit(2.0),
+    }
+}
+
 /// The actuator limits `(lo, hi)` of the example's scenario: saturated
 /// `[-2.5, 3]`, `[-2, 3]`, `[-7, 9]` (examples 1-3), otherwise
 /// [`UNSATURATED_LIMITS`].

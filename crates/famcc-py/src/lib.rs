@@ -100,6 +100,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(paper::paper_design, m)?)?;
     m.add_function(wrap_pyfunction!(paper::paper_corollary_bound, m)?)?;
     m.add_function(wrap_pyfunction!(paper::paper_input_limits, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::paper_nominal_gain, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_rules, m)?)?;
     Ok(())
 }

@@ -46,6 +46,12 @@ pub fn paper_input_limits(example: u32, saturated: bool) -> PyResult<(f64, f64)>
     Ok(designs::input_limits::<f64>(self::example(example)?, saturated))
 }
 
+/// The plant's nominal input gain `G0` of the example (the observer's `b0`).
+#[pyfunction]
+pub fn paper_nominal_gain(example: u32) -> PyResult<f64> {
+    Ok(designs::nominal_gain::<f64>(self::example(example)?))
+}
+
 #[derive(Clone, Copy, Debug)]
 enum Which {
     Second(SecondOrder),

@@ -6,7 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from famcc import plants
+from famcc import _core, plants
 from famcc.joints import two_link_arm
 
 
@@ -168,7 +168,7 @@ def _paper_cases() -> list[Case]:
             0.1,
             ((-100.0, 100.0),),
             ((-2.5, 3.0),),
-            (2.0,),
+            (_core.paper_nominal_gain(1),),
             (3.5,),
             "finite-time",
             {"gain": 1.0, "amp": 3.0},
@@ -184,7 +184,7 @@ def _paper_cases() -> list[Case]:
             0.1,
             ((-100.0, 100.0),),
             ((-2.0, 3.0),),
-            (2.0,),
+            (_core.paper_nominal_gain(2),),
             (3.5,),
             "variable-exponent",
             {"gain": 1.0, "amp": 3.0},
@@ -199,7 +199,7 @@ def _paper_cases() -> list[Case]:
             0.1,
             ((-100.0, 100.0),),
             ((-7.0, 9.0),),
-            (2.0,),
+            (_core.paper_nominal_gain(3),),
             (10.0,),
             "rfc",
             {"gain": 1.0, "amp": 10.0},
