@@ -9,7 +9,10 @@
 //! time per iteration in microseconds is the time per step in nanoseconds. The
 //! observed controllers use the same laws with the observer in place of the differentiator
 //! (`mu = 0.02`, `b0 = 1`, `delta = 10`), with the measurement held (`exact`) and
-//! with the first-order hold (`foh`).
+//! with the first-order hold (`foh`). Each runs open (the recorded errors, so
+//! the CPU may overlap consecutive plain steps, whose differentiator does not
+//! depend on the output) and closed (`/settled-closed`: each sample waits for
+//! the previous output, as in a control loop).
 #![allow(
     clippy::unwrap_used,
     clippy::expect_used,
@@ -24,31 +27,38 @@ mod step;
 use std::time::Duration;
 
 use criterion::{Criterion, Throughput};
-use famcc_core::{Controller, Discretization, ExtendedHighGain, Real};
-
-/// The law of `plain` without its differentiator, on the observer.
-fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretization) -> Controller<T, N> {
-    let obs = ExtendedHighGain::binomial(T::from_f64(0.02), T::one()).with_discretization(hold);
-    let cfg = plain
-        .config()
-        .to_builder()
-        .differentiator(None)
-        .observer(Some(obs))
-        .cancellation_limit(Some(T::from_f64(10.0)))
-        .build()
-        .unwrap();
-    Controller::new(cfg)
-}
+use famcc_core::{Controller, Discretization};
 
 type Group<'a> = criterion::BenchmarkGroup<'a, criterion::measurement::WallTime>;
 
+/// The settled chunks of `w` in a closed loop ([`step::run_chunk_closed`]).
+fn bench_closed<S: step::Stepper<f64>>(g: &mut Group<'_>, name: &str, w: &step::Workload<S, f64>) {
+    let settled = w.settled();
+    let mut j = settled.start;
+    g.bench_function(format!("{name}/settled-closed"), |b| {
+        b.iter(|| {
+            let out = step::run_chunk_closed(&w.starts[j], &w.e[j * step::CHUNK..(j + 1) * step::CHUNK]);
+            j = if j + 1 == settled.end {
+                settled.start
+            } else {
+                j + 1
+            };
+            out
+        })
+    });
+}
+
 /// The plain workload `name`, then its law on the observer with each hold
-/// (interleaved: each plain workload right before its observed ones).
+/// (interleaved: each plain workload right before its observed ones), each
+/// replayed open (the recorded errors) and in a closed loop.
 fn bench_example<const N: usize>(g: &mut Group<'_>, name: &str, w: &step::Workload<Controller<f64, N>, f64>) {
     step::bench_phases(g, &format!("{name}-plain/f64"), w, false);
+    bench_closed(g, &format!("{name}-plain/f64"), w);
     for (hold, disc) in [("exact", Discretization::Exact), ("foh", Discretization::Foh)] {
         let name = format!("{name}-observed-{hold}/f64");
-        step::bench_phases(g, &name, &w.with(observed(&w.starts[0], disc)), false);
+        let wo = w.with(step::observed(&w.starts[0], disc));
+        step::bench_phases(g, &name, &wo, false);
+        bench_closed(g, &name, &wo);
     }
 }
 

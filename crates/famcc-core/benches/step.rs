@@ -288,6 +288,21 @@ pub fn run_chunk<T: Copy, S: Stepper<T>>(start: &S, e: &[T]) -> T {
     last
 }
 
+/// As [`run_chunk`], in a closed loop: each sample waits for the previous
+/// output (`e_k + 0 * v_(k-1)`, the zero hidden from the compiler), as a
+/// controller's next measurement follows its last command. The values are
+/// those of [`run_chunk`]; the steps can no longer overlap in the CPU.
+#[inline(never)]
+pub fn run_chunk_closed<T: Real, S: Stepper<T>>(start: &S, e: &[T]) -> T {
+    let mut s = *start;
+    let zero = black_box(T::zero());
+    let mut last = T::zero();
+    for &x in e {
+        last = black_box(s.step_once(black_box(x + last * zero)));
+    }
+    last
+}
+
 fn to_t<T: Real>(run: &common::Run) -> Vec<T> {
     run.z1.iter().map(|&e| T::from_f64(e)).collect()
 }
@@ -304,6 +319,22 @@ fn with_disc<T: Real, const N: usize>(c: &Controller<T, N>, disc: Discretization
 /// Example 1 (LaMC finite-time), closed loop on the second-order plant
 /// (variant "code", limits +-100); `disc` replaces the differentiator's
 /// discretization for the replay (the inputs stay those of the exact run).
+/// The law of `plain` without its differentiator, on the observer (`mu = 0.02`,
+/// `b0 = 1`, `delta = 10`; benches/observed.rs, examples/callgrind_step.rs).
+#[cfg(feature = "observer")]
+pub fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretization) -> Controller<T, N> {
+    let obs = famcc_core::ExtendedHighGain::binomial(T::from_f64(0.02), T::one()).with_discretization(hold);
+    let cfg = plain
+        .config()
+        .to_builder()
+        .differentiator(None)
+        .observer(Some(obs))
+        .cancellation_limit(Some(T::from_f64(10.0)))
+        .build()
+        .unwrap();
+    Controller::new(cfg)
+}
+
 pub fn ex1<T: Real>(disc: Discretization) -> Workload<Controller<T, 2>, T> {
     let c = common::example1::<T>(Variant::Code, DT);
     let mut closed = c; // Controller is Copy: c stays fresh

@@ -7,7 +7,9 @@
 //! `design`: `ex1`, `ex2`, `ex3` (the paper's designs, f64), the same with an
 //! `f32` suffix (`ex1f32`) or an `euler` suffix (`ex1euler`, f64, Euler
 //! differentiator), `base` / `basef32` (the hand-inlined order-2 baseline), and
-//! `nsmd3`..`nsmd8`, `linear3`..`linear8` (order scaling). The workloads are
+//! `nsmd3`..`nsmd8`, `linear3`..`linear8` (order scaling), `ex1obs`, `ex3obs`
+//! (the same laws on the observer, benches/observed.rs; `ex1obsfoh`, `ex3obsfoh`
+//! with the first-order hold). The workloads are
 //! those of `benches/step.rs` (included below): recorded closed-loop errors,
 //! replayed in chunks of 1000 samples from saved states. `transient` repeats
 //! the first chunk (t < 1 s), `settled` cycles the chunks from t = 1 s on.
@@ -150,6 +152,21 @@ fn main() {
         "linear6" => run!(step::scaled::<f64, 6>(Family::Linear)),
         "linear7" => run!(step::scaled::<f64, 7>(Family::Linear)),
         "linear8" => run!(step::scaled::<f64, 8>(Family::Linear)),
+        #[cfg(feature = "observer")]
+        "ex1obs" | "ex3obs" | "ex1obsfoh" | "ex3obsfoh" => {
+            let disc = if design.ends_with("foh") {
+                Discretization::Foh
+            } else {
+                Exact
+            };
+            if design.starts_with("ex1") {
+                let w = step::ex1::<f64>(Exact);
+                run!(w.with(step::observed(&w.starts[0], disc)))
+            } else {
+                let w = step::ex3::<f64>(Exact);
+                run!(w.with(step::observed(&w.starts[0], disc)))
+            }
+        }
         other => panic!("unknown design {other}; {usage}"),
     }
 }
