@@ -6,6 +6,7 @@ import copy
 import json
 import re
 
+import numpy as np
 import pytest
 from famcc import cli
 from famcc import compare as cmp
@@ -185,3 +186,70 @@ def test_bad_arguments_are_named():
     with pytest.raises(ValueError, match="family"):
         cmp.famcc_candidates(None, 1e-3, order=2, family="pid", band=0.1, gain=1.0, hold=1.0)
     assert cli.main(["compare", "--out", "/tmp/never", "--plant", "bicycle", "--quiet"]) == 2
+
+
+def test_the_slower_observer_is_the_documented_factor():
+    from famcc.compare.spaces import SLOWER_OBSERVER
+
+    for case in cmp.cases():
+        sp = cmp.space("famcc", case)
+        u = sp.unit(sp.default)
+        slow = sp.slowed(u)
+        assert slow is not None
+        p, q = sp.params(u), sp.params(slow)
+        if "obs_mu" in p:
+            assert q["obs_mu"] == pytest.approx(SLOWER_OBSERVER * p["obs_mu"])
+        else:
+            assert q["obs_ratio"] == pytest.approx(max(p["obs_ratio"] / SLOWER_OBSERVER, 2.0))
+        # everything else unchanged
+        assert {k: v for k, v in q.items() if not k.startswith("obs")} == pytest.approx(
+            {k: v for k, v in p.items() if not k.startswith("obs")}
+        )
+        # at the slow end of the range there is nothing slower
+        name = "obs_mu" if "obs_mu" in p else "obs_ratio"
+        end = sp.ranges[name][1] if name == "obs_mu" else sp.ranges[name][0]
+        assert sp.slowed(sp.unit({**p, name: end})) is None
+    assert cmp.space("adrc", cmp.cases()[0]).slowed(np.array([0.5, 0.5])) is None
+
+
+def test_the_noise_check_chooses_the_least_sum_and_spends_its_runs():
+    """A fake pool: objective J = the point's first coordinate, plus its last one under noise."""
+    from famcc.compare import tuning
+
+    class Pool:
+        def __init__(self):
+            self.tasks = []
+
+        def map(self, tasks):
+            self.tasks += tasks
+            out = []
+            for t in tasks:
+                u = np.array(t["u"])
+                j = u[0] + (3.0 * (1.0 - u[-1]) if t["condition"] != "nominal" else 0.0)
+                out.append({**t, "metrics": {"objective": float(j)}})
+            return out
+
+    case = cmp.cases()[0]
+    sp = cmp.space("famcc", case)
+    key = (case.name, "famcc")
+    hist = {key: [(np.full(sp.dims, 0.1), 0.1, {}), (np.full(sp.dims, 0.3), 0.3, {})]}
+
+    def tasks_for(points, condition="nominal"):
+        return [
+            {"case": k[0], "kind": k[1], "u": u.tolist(), "condition": condition}
+            for k, us in points.items()
+            for u in us
+        ]
+
+    def record(results):
+        for r in results:
+            hist[(r["case"], r["kind"])].append((np.array(r["u"]), r["metrics"]["objective"], {}))
+
+    pool = Pool()
+    chosen, noisy = tuning._noise_checked(pool, hist, {key: [sp]}, tasks_for, record)
+    assert len(pool.tasks) == tuning.NOISE_CHECKS["famcc"] == 3
+    slow = sp.slowed(np.full(sp.dims, 0.1))
+    # the slower observer pays less under noise here: it is chosen
+    assert np.array_equal(chosen[key][0], slow)
+    assert len(noisy[key]) == 2 and len(hist[key]) == 3
+    # and the best nominal one when noise costs nothing

@@ -21,7 +21,7 @@ from famcc.compare.findings import (
 )
 from famcc.compare.plants import _case
 from famcc.compare.runs import run
-from famcc.compare.spaces import _KINDS
+from famcc.compare.spaces import _KINDS, SLOWER_OBSERVER
 from famcc.compare.tuning import NOISE_CHECK_CONDITION, NOISE_CHECKS
 
 
@@ -168,8 +168,9 @@ def _intro(result: dict[str, Any]) -> list[str]:
             "(`famcc.compare.space`, scaled by the plant's gain G, H and the band), then "
             f"rounds ({rounds}) of Gaussian steps around the best so far: half the budget "
             "each, famcc's own budget less its noise checks "
-            f"({NOISE_CHECKS['famcc']} runs: its best distinct candidates run again under "
-            f"{NOISE_CHECK_CONDITION}, and the one with the least sum of the two objectives is "
+            f"({NOISE_CHECKS['famcc']} runs: its best candidate under {NOISE_CHECK_CONDITION}, "
+            f"and the same with its observer {SLOWER_OBSERVER:g}x slower nominal and under "
+            f"{NOISE_CHECK_CONDITION}; the one with the least sum of its two objectives is "
             "chosen, as an observer tuned without noise picks a bandwidth noise punishes). "
             "Objective `J = IAE / (band T) + 0.01 TV(u) / H + 10 [never settled]`, "
             "`J = 1e6` when diverged (`H` the plant's holding input). The best candidate is "

@@ -35,6 +35,9 @@ class Space:
     ranges: dict[str, tuple[float, float, bool]]
     fixed: dict[str, Any] = field(default_factory=dict)
     default: dict[str, float] = field(default_factory=dict)
+    #: ``(name, factor)``: the parameter and factor that make a candidate slower
+    #: (famcc's observer: ``mu`` x 4), for the noise check (compare/tuning.py).
+    slower: tuple[str, float] | None = None
 
     @property
     def dims(self) -> int:
@@ -48,6 +51,16 @@ class Space:
             out[name] = lo * (hi / lo) ** x if log else lo + (hi - lo) * x
         return out
 
+    def slowed(self, u: np.ndarray) -> np.ndarray | None:
+        """The point ``u`` with :attr:`slower` applied (clipped to its range), or
+        None when there is none or it changes nothing."""
+        if self.slower is None:
+            return None
+        name, factor = self.slower
+        p = self.params(u)
+        out = self.unit({**p, name: p[name] * factor})
+        return None if np.array_equal(out, u) else out
+
     def unit(self, params: dict[str, float]) -> np.ndarray:
         """The point of the unit cube of ``params`` (clipped to the ranges)."""
         out = []
@@ -60,6 +73,9 @@ class Space:
 
 #: famcc's law family with the observer, by order (``"linear"`` above).
 _OBSERVED_FAMILY = {1: "finite-time", 2: "finite-time"}
+
+#: How much slower the observer of famcc's noise-checked variant is (``mu`` x 4).
+SLOWER_OBSERVER = 4.0
 
 #: The paper's k_u of examples 1-3 (famcc's default there; 1.5 H elsewhere).
 PAPER_K_U = {"example-1": 5.0, "example-2": 2.0, "example-3": 30.0}
@@ -98,6 +114,9 @@ def famcc_candidates(
     orders 1-2 (example 3: 1.23 against 1.70; flexible joint 2.27 against
     4.04); ``u_ratio`` to 100 or 300 gave 1.99 and 1.83.
 
+    ``Space.slowed`` gives the noise check's variant (compare/tuning.py): the
+    observer :data:`SLOWER_OBSERVER` times slower (``mu`` x 4, ``obs_ratio`` / 4).
+
     The observer has the nominal gain ``b0 = gain`` (the information ADRC's
     ``b0`` gets) and the cancellation is bounded by the actuator's range.
     ``family`` (the paper's design family of the case: ``"finite-time"``,
@@ -124,6 +143,7 @@ def famcc_candidates(
             },
             fixed,
             {"k": 10.0, "settle_time": 0.5, "eps": 0.5 * band, "u_ratio": 10.0, "obs_ratio": 5.0},
+            slower=("obs_ratio", 1.0 / SLOWER_OBSERVER),
         )
     return Space(
         "famcc",
@@ -144,6 +164,7 @@ def famcc_candidates(
             "k_u": 10.0 * hold,
             "obs_mu": 0.01,
         },
+        slower=("obs_mu", SLOWER_OBSERVER),
     )
 
 

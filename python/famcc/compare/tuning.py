@@ -11,9 +11,11 @@ from famcc.compare.plants import Case
 from famcc.compare.spaces import _KINDS, space
 from famcc.compare.workers import _Pool
 
-#: Runs of famcc's own budget spent re-running its best nominal candidates under
-#: noise (an observer tuned without noise picks a bandwidth that noise punishes).
-NOISE_CHECKS = {"famcc": 2}
+#: Runs of famcc's own budget spent on the noise check (an observer tuned without
+#: noise picks a bandwidth that noise punishes): its best nominal candidate under
+#: noise, and the same with the observer slower (``Space.slowed``) nominal and
+#: under noise.
+NOISE_CHECKS = {"famcc": 3}
 #: The condition of those runs.
 NOISE_CHECK_CONDITION = "noise 1e-3"
 
@@ -98,7 +100,7 @@ def _tune(
             step = rngs[key].normal(0.0, sigma, size=(m, best.size))
             points[key] = np.clip(best + step, 0.0, 1.0)
         record(pool.map(tasks_for(points)))
-    chosen_run, noisy = _noise_checked(pool, hist, tasks_for)
+    chosen_run, noisy = _noise_checked(pool, hist, spaces, tasks_for, record)
     out: dict[str, Any] = {}
     for (name, kind), h in hist.items():
         best_u, best_j, best_m = chosen_run.get((name, kind)) or min(h, key=lambda e: e[1])
@@ -118,7 +120,9 @@ def _tune(
 def _noise_checked(
     pool: _Pool,
     hist: dict[tuple[str, str], list[tuple[np.ndarray, float, dict[str, Any]]]],
+    spaces: dict[tuple[str, str], list[Any]],
     tasks_for: Callable[..., list[dict[str, Any]]],
+    record: Callable[[list[dict[str, Any]]], None],
 ) -> tuple[
     dict[tuple[str, str], tuple[np.ndarray, float, dict[str, Any]]],
     dict[tuple[str, str], list[float]],
@@ -126,31 +130,33 @@ def _noise_checked(
     """The nominal run of the candidate chosen with the noise check, per controller that has
     one, and the objectives of the runs under noise.
 
-    The best ``NOISE_CHECKS[kind]`` distinct nominal candidates run once more under
-    ``NOISE_CHECK_CONDITION``; the one with the least sum of the two objectives is
-    chosen (its nominal run stands for it).
+    The best nominal candidate and the same with its observer slower
+    (``Space.slowed``; its nominal run joins the history) run under
+    ``NOISE_CHECK_CONDITION``; the one with the least sum of its nominal and
+    noisy objectives is chosen (its nominal run stands for it).
     """
-    best: dict[tuple[str, str], list[tuple[np.ndarray, float, dict[str, Any]]]] = {}
+    best: dict[tuple[str, str], tuple[np.ndarray, float, dict[str, Any]]] = {}
+    slowed: dict[tuple[str, str], np.ndarray] = {}
     for key, h in hist.items():
-        n = NOISE_CHECKS.get(key[1], 0)
-        if n:
-            ranked = sorted(h, key=lambda e: e[1])
-            distinct: list[tuple[np.ndarray, float, dict[str, Any]]] = []
-            for e in ranked:
-                if all(not np.array_equal(e[0], d[0]) for d in distinct):
-                    distinct.append(e)
-                if len(distinct) == n:
-                    break
-            best[key] = distinct
+        if NOISE_CHECKS.get(key[1], 0):
+            best[key] = min(h, key=lambda e: e[1])
+            slow = spaces[key][0].slowed(best[key][0])
+            if slow is not None:
+                slowed[key] = slow
     if not best:
         return {}, {}
-    points = {key: np.array([e[0] for e in es]) for key, es in best.items()}
+    n_before = {key: len(hist[key]) for key in slowed}
+    record(pool.map(tasks_for({key: np.array([u]) for key, u in slowed.items()})))
+    candidates = {
+        key: [e] + hist[key][n_before[key] :] if key in slowed else [e] for key, e in best.items()
+    }
+    points = {key: np.array([e[0] for e in es]) for key, es in candidates.items()}
     results = pool.map(tasks_for(points, NOISE_CHECK_CONDITION))
-    noisy: dict[tuple[str, str], list[float]] = {key: [] for key in best}
+    noisy: dict[tuple[str, str], list[float]] = {key: [] for key in candidates}
     for r in results:
         noisy[(r["case"], r["kind"])].append(float(r["metrics"]["objective"]))
     out = {}
-    for key, es in best.items():
+    for key, es in candidates.items():
         js = noisy[key]
         i = min(range(len(es)), key=lambda i: es[i][1] + js[i])
         out[key] = es[i]
