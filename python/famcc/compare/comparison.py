@@ -9,7 +9,7 @@ from typing import Any
 
 from famcc.compare.conditions import CONDITIONS, QUICK_CONDITIONS
 from famcc.compare.evaluation import _evaluate
-from famcc.compare.plants import Case, cases
+from famcc.compare.plants import _OWN, Case, cases
 from famcc.compare.spaces import _KINDS, controllers
 from famcc.compare.tuning import _tune, tune_budget
 from famcc.compare.workers import _Pool
@@ -23,6 +23,7 @@ def compare(
     seed: int = 2026,
     dispersion_plants: int | None = None,
     case_names: Sequence[str] | None = None,
+    own_cases: Sequence[Case] = (),
 ) -> dict[str, Any]:
     """Tune every controller on every plant, then run every condition.
 
@@ -40,6 +41,10 @@ def compare(
         Dispersed plants per case (default 6, quick 2).
     case_names : sequence of str, optional
         A subset of :func:`cases`.
+    own_cases : sequence of Case
+        Plants of your own (each with its ``factory``), compared after the
+        chosen built-in ones by the same procedure and budget; pass
+        ``case_names=[]`` to compare only these. Their names must be new.
 
     Returns
     -------
@@ -50,8 +55,12 @@ def compare(
     """
     t0 = time.perf_counter()
     chosen = [c for c in cases(quick) if case_names is None or c.name in case_names]
-    if not chosen:
+    own = _own(own_cases, {c.name for c in cases()})
+    if case_names and not chosen:
         raise ValueError(f"case_names matched no case: {case_names!r}")
+    chosen += list(own.values())
+    if not chosen:
+        raise ValueError("no case to compare: give case_names or own_cases")
     jobs = max(1, int(jobs or os.cpu_count() or 1))
     budget, rounds = tune_budget(quick)
     n_disp = dispersion_plants if dispersion_plants is not None else (2 if quick else 6)
@@ -59,7 +68,9 @@ def compare(
     def horizon(c: Case) -> float:
         return min(c.t_end, 4.0) if quick else c.t_end
 
-    pool = _Pool(jobs, progress)
+    pool = _Pool(jobs, progress, own)
+    _OWN.clear()
+    _OWN.update(own)  # for the report's figures, in this process
     try:
         tuned = _tune(pool, chosen, budget, rounds, seed, horizon)
         runs = _evaluate(pool, chosen, tuned, quick, n_disp, seed, horizon)
@@ -110,3 +121,25 @@ def _case_meta(c: Case, horizon: float) -> dict[str, Any]:
         "input_unit": c.input_unit,
         "family": c.family,
     }
+
+
+def _own(own_cases: Sequence[Case], taken: set[str]) -> dict[str, Case]:
+    """The user's cases by name, checked: a Case with a factory and a new, unique name."""
+    out: dict[str, Case] = {}
+    for c in own_cases:
+        if not isinstance(c, Case) or c.factory is None:
+            raise ValueError(
+                f"own_cases takes famcc.compare.Case objects with a factory, got {c!r}"
+            )
+        if c.name in taken or c.name in out:
+            raise ValueError(f"own case name {c.name!r} is taken: choose another")
+        if len(c.limits) != c.joints or len(c.gain) != c.joints or len(c.hold) != c.joints:
+            raise ValueError(
+                f"own case {c.name!r}: limits, gain and hold need one entry per joint ({c.joints})"
+            )
+        if c.joints > 1 and min(c.gain) < 0:
+            raise ValueError(
+                f"own case {c.name!r}: a negative gain is supported for one joint only"
+            )
+        out[c.name] = c
+    return out

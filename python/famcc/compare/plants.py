@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from famcc import _core, plants
@@ -38,6 +38,31 @@ class Case:
         ``"variable-exponent"`` (example 2) or ``"rfc"`` (example 3, any order >= 3).
     params : dict
         The plant's nominal parameters (dispersed by +-30 %).
+    output_unit, input_unit : str
+        For the report.
+    factory : callable, optional
+        ``factory(**params) -> plant`` (anything :func:`famcc.simulate` takes,
+        e.g. a :class:`famcc.plants.Plant`): the plant of a case of your own,
+        given to :func:`famcc.compare.compare` as ``own_cases``. With worker
+        processes it must pickle (a module-level function or a
+        ``functools.partial`` of one). None for the built-in cases.
+
+    Examples
+    --------
+    >>> import numpy as np, famcc
+    >>> from famcc.compare import Case
+    >>> class Cart(famcc.plants.Plant):
+    ...     def __init__(self, m=2.0, c=0.5):
+    ...         super().__init__(2, [0.0, 0.0], name="cart")
+    ...         self.m, self.c = m, c
+    ...     def rhs(self, t, x, u):
+    ...         load = 1.0 if t >= 2.0 else 0.0
+    ...         return np.array([x[1], (u - self.c * np.tanh(5 * x[1]) - load) / self.m])
+    >>> cart = Case("cart", "a cart with tanh friction", 2, 1, (0.5,), 4.0, 0.01,
+    ...             ((-5.0, 5.0),), ((-1.5, 1.5),), (0.5,), (1.5,), "finite-time",
+    ...             {"m": 2.0, "c": 0.5}, factory=Cart)
+    >>> cart.factory(**cart.params).m
+    2.0
     """
 
     name: str
@@ -55,6 +80,30 @@ class Case:
     params: dict[str, float] = field(default_factory=dict)
     output_unit: str = ""
     input_unit: str = ""
+    factory: Callable[..., Any] | None = None
+
+    @property
+    def reversed(self) -> bool:
+        """A single-joint plant with a negative input gain ``G < 0``."""
+        return self.joints == 1 and self.gain[0] < 0
+
+    def as_positive(self) -> Case:
+        """The case as every controller sees it: with a negative gain the input is
+        reversed (``G -> |G|``, the limits mirrored, ``u -> -u`` at the plant, see
+        :class:`_Bare`), for all alike: simple-pid takes no negative gains and
+        famcc's law assumes a positive control direction (issue 33)."""
+        if not self.reversed:
+            return self
+
+        def mirror(lims: tuple[tuple[float, float], ...]) -> tuple[tuple[float, float], ...]:
+            return tuple((-hi, -lo) for lo, hi in lims)
+
+        return replace(
+            self,
+            gain=(-self.gain[0],),
+            limits=mirror(self.limits),
+            saturated=mirror(self.saturated),
+        )
 
 
 def _suite_cases() -> list[Case]:
@@ -218,7 +267,13 @@ def cases(quick: bool = False) -> list[Case]:
     return every
 
 
+#: The cases of the user's own that :func:`famcc.compare.compare` runs (by name).
+_OWN: dict[str, Case] = {}
+
+
 def _case(name: str) -> Case:
+    if name in _OWN:
+        return _OWN[name]
     for c in _paper_cases() + _suite_cases():
         if c.name == name:
             return c
@@ -228,6 +283,8 @@ def _case(name: str) -> Case:
 def make_plant(case: Case, factors: dict[str, float] | None = None) -> Any:
     """The case's plant, its parameters multiplied by ``factors`` (dispersion)."""
     p = {k: v * (factors or {}).get(k, 1.0) for k, v in case.params.items()}
+    if case.factory is not None:
+        return case.factory(**p)
     if case.name in ("example-1", "example-2"):
         return plants.second_order("code", gain=p["gain"], amp=p["amp"])
     if case.name == "example-3":
@@ -241,9 +298,14 @@ def make_plant(case: Case, factors: dict[str, float] | None = None) -> Any:
 class _Bare:
     """A plant seen only through ``rhs``: the true ``z1`` is all the metrics need."""
 
-    def __init__(self, plant: Any) -> None:
+    def __init__(self, plant: Any, reverse: bool = False) -> None:
         self.order, self.x0, self.rhs = plant.order, plant.x0, plant.rhs
         self.output, self.input = plant.output, plant.input
         fast = getattr(plant, "rhs_fast", None)
-        if fast is not None:
+        if reverse:  # the input reversed (Case.as_positive)
+            rhs = plant.rhs
+            self.rhs = lambda t, x, u: rhs(t, x, -u)
+            if fast is not None:
+                self.rhs_fast = lambda t, x, u: fast(t, x, -u)
+        elif fast is not None:
             self.rhs_fast = fast

@@ -37,7 +37,7 @@ def run(
     """
     cond = condition_of(condition)
     dt = cond["dt"]
-    limits = getattr(case, cond["limits"])
+    limits = getattr(case.as_positive(), cond["limits"])
     plant = make_plant(case, factors)
     horizon = case.t_end if t_end is None else t_end
     substeps = max(1, math.ceil(dt / RK4_STEP - 1e-9))
@@ -63,7 +63,7 @@ def run(
             diverge_at=bound,
         )
     res = sim.simulate(
-        _Bare(plant),
+        _Bare(plant, case.reversed),
         ctrls[0],
         horizon,
         reference=refs[0],

@@ -184,6 +184,7 @@ def space(kind: str, case: Case, joint: int = 0) -> Space:
       [1e-3, 0.3] (0.01).
     * ``adrc``: ``w_cl`` in [1, 200] rad/s (10), ``k_eso`` in [2, 10] (5), ``b0 = G``.
     """
+    case = case.as_positive()  # a negative gain: every controller on the reversed input
     g, h, n = case.gain[joint], case.hold[joint], case.order
     if kind == "famcc":
         return famcc_candidates(

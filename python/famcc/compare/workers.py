@@ -16,7 +16,8 @@ from famcc.compare.runs import metrics, run
 def _work(task: dict[str, Any]) -> dict[str, Any]:
     """The worker: one run of a task, its metrics (never raises for a failed loop)."""
     t0 = time.perf_counter()
-    case = _case(task["case"])
+    own = task.pop("own_case", None)  # a case of the user's own travels with its task
+    case = own if own is not None else _case(task["case"])
     horizon = task.get("t_end") or case.t_end
     try:
         res = run(
@@ -38,12 +39,16 @@ def _work(task: dict[str, Any]) -> dict[str, Any]:
 class _Pool:
     """Runs task lists in parallel (or in-process for ``jobs == 1``) with a progress bar."""
 
-    def __init__(self, jobs: int, progress: Any) -> None:
+    def __init__(self, jobs: int, progress: Any, own: dict[str, Any] | None = None) -> None:
         self.jobs, self.progress = jobs, progress
+        self.own = own or {}
         self.ex = ProcessPoolExecutor(max_workers=jobs) if jobs > 1 else None
 
     def map(self, tasks: list[dict[str, Any]]) -> list[dict[str, Any]]:
         out: list[dict[str, Any]] = [{} for _ in tasks]
+        tasks = [
+            {**t, "own_case": self.own[t["case"]]} if t["case"] in self.own else t for t in tasks
+        ]
         if self.ex is None:
             for i, t in enumerate(tasks):
                 out[i] = _work(t)
