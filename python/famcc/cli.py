@@ -51,6 +51,7 @@ def _positive(text: str) -> float:
 def _parser() -> argparse.ArgumentParser:
     from famcc import __version__, scenarios
     from famcc import sweep as sw
+    from famcc.scenarios import OBSERVER_MU
 
     names = scenarios.names()
     p = argparse.ArgumentParser(
@@ -131,6 +132,16 @@ def _parser() -> argparse.ArgumentParser:
         "--dt", type=_positive, default=1e-3, help="controller sample period in s (default: 0.001)"
     )
     rp.add_argument("--no-figures", action="store_true", help="skip the PNGs (numbers only)")
+    rp.add_argument(
+        "--observer",
+        nargs="?",
+        type=_positive,
+        const=OBSERVER_MU,
+        default=None,
+        metavar="MU",
+        help="the extended observer (mu in s, default "
+        f"{OBSERVER_MU:g}) in the differentiator's place; the claims are the paper's",
+    )
     rp.add_argument(
         "--sweep-dt",
         action="store_true",
@@ -326,6 +337,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             t_end=args.t_end,
             figures=not args.no_figures,
             progress=None if args.quiet else "stderr",
+            observer=args.observer,
         )
     except ValueError as exc:
         print(f"famcc reproduce: error: {exc}", file=sys.stderr)

@@ -66,8 +66,9 @@ MAX_HORIZON = 40.0
 #: The observer's mu (s) of :meth:`Scenario.with_observer`: twice the paper's
 #: differentiator's 0.01 s. Measured: with mu = 0.01 s the third-order start-up
 #: peaking leaves the limits (``rfc`` fails "unsaturated" and "nominal"); with
-#: 0.005 s ``rfc`` diverges and ``variable-exponent`` expands; with 0.02 s every
-#: scenario keeps every claim (tests/test_scenario_observer.py).
+#: 0.005 s ``rfc`` diverges and ``variable-exponent`` expands; with 0.02 s no
+#: claim fails (tests/test_scenario_observer.py; rfc-saturated's recovery claims
+#: stay untested, as without the observer).
 OBSERVER_MU = 0.02
 #: |z1| (output units) beyond which :meth:`Scenario.run` stops a run as diverged:
 #: 10^6 times the paper's largest initial error.

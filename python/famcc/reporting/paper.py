@@ -48,6 +48,7 @@ def reproduce(
     t_end: float | None = None,
     figures: bool = True,
     progress: Any = "stderr",
+    observer: float | None = None,
 ) -> list[dict[str, Any]]:
     """Runs the scenarios, writes figures, ``report.md`` and ``summary.json`` into ``out``.
 
@@ -66,6 +67,11 @@ def reproduce(
         Draw the PNGs (the report then embeds them).
     progress : "stderr", None or a :class:`Progress`
         Where to report progress.
+    observer : float, optional
+        Run every scenario with the extended observer of this ``mu`` (s) in the
+        differentiator's place (:meth:`famcc.scenarios.Scenario.with_observer`;
+        design, plant, limits and claims unchanged). None: the paper's
+        differentiator.
 
     Returns
     -------
@@ -82,6 +88,10 @@ def reproduce(
             )
     if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt must be a finite number > 0, got {dt!r}")
+    if observer is not None and not (
+        isinstance(observer, (int, float)) and math.isfinite(observer) and observer > 0
+    ):
+        raise ValueError(f"observer (its mu, s) must be a finite number > 0, got {observer!r}")
     if t_end is not None and not (math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_end must be a finite number > 0, got {t_end!r}")
     out = Path(out)
@@ -100,6 +110,8 @@ def reproduce(
     results = {}
     for name in names:
         sc = scenarios.paper(name, variant)
+        if observer is not None:
+            sc = sc.with_observer(mu=float(observer))
         t0 = time.perf_counter()
         try:
             res = sc.run(dt=dt, t_end=t_end)
@@ -129,6 +141,7 @@ def reproduce(
         "variant": variant,
         "dt": float(dt),
         "t_end": t_end,
+        "observer_mu": None if observer is None else float(observer),
         "runtime_s": time.perf_counter() - t_start,
     }
     write_report(records, out, meta)
@@ -151,12 +164,19 @@ def write_report(
         "recovery claims can fall due, see the table), famcc "
         f"{_core.__version__}"
         + (f", {meta['runtime_s']:.1f} s wall time" if meta.get("runtime_s") else "")
+        + (
+            f". With the extended observer (mu = {meta['observer_mu']:g} s, b0 = the plant's "
+            "nominal gain, docs/observer.md) in the differentiator's place"
+            if meta.get("observer_mu")
+            else ""
+        )
         + ". The same numbers are in [`summary.json`](summary.json); the figures are explained "
         "in `docs/figures.md`."
     )
     regenerate = (
         f"famcc reproduce --variant {meta.get('variant')} --dt {meta.get('dt'):g}"
         + (f" --t-end {meta['t_end']:g}" if meta.get("t_end") else "")
+        + (f" --observer {meta['observer_mu']:g}" if meta.get("observer_mu") else "")
         + " --out DIR"
     )
     return _write(
@@ -169,6 +189,7 @@ def write_report(
             "variant": meta.get("variant"),
             "dt": meta.get("dt"),
             "t_end": meta.get("t_end"),
+            "observer_mu": meta.get("observer_mu"),
             "runtime_s": _num(meta.get("runtime_s")),
         },
         key="scenarios",
