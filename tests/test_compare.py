@@ -253,3 +253,41 @@ def test_the_noise_check_chooses_the_least_sum_and_spends_its_runs():
     assert np.array_equal(chosen[key][0], slow)
     assert len(noisy[key]) == 2 and len(hist[key]) == 3
     # and the best nominal one when noise costs nothing
+
+
+def test_the_noise_check_weighs_relative_changes_not_the_noisy_scale():
+    """Nominal 0.1 -> 2.0 (20x worse) for a noisy 100 -> 60: the slower candidate is
+    not chosen (the product rule; a sum would follow the noisy run's larger scale)."""
+    from famcc.compare import tuning
+
+    class Pool:
+        def map(self, tasks):
+            out = []
+            for t in tasks:
+                x = np.array(t["u"])[-1] - 0.1
+                noisy = t["condition"] != "nominal"
+                j = 100.0 - 133.0 * x if noisy else 0.1 + 6.3 * x
+                out.append({**t, "metrics": {"objective": float(j)}})
+            return out
+
+    case = cmp.cases()[0]
+    sp = cmp.space("famcc", case)
+    key = (case.name, "famcc")
+    best = np.full(sp.dims, 0.1)
+    hist = {key: [(best, 0.1, {})]}
+
+    def tasks_for(points, condition="nominal"):
+        return [
+            {"case": k[0], "kind": k[1], "u": u.tolist(), "condition": condition}
+            for k, us in points.items()
+            for u in us
+        ]
+
+    def record(results):
+        for r in results:
+            hist[key].append((np.array(r["u"]), r["metrics"]["objective"], {}))
+
+    chosen, noisy = tuning._noise_checked(Pool(), hist, {key: [sp]}, tasks_for, record)
+    assert noisy[key][1] < noisy[key][0]  # the slower one is better under noise
+    assert hist[key][1][1] > 10 * hist[key][0][1]  # and far worse nominally
+    assert np.array_equal(chosen[key][0], best)

@@ -170,7 +170,7 @@ def _intro(result: dict[str, Any]) -> list[str]:
             "each, famcc's own budget less its noise checks "
             f"({NOISE_CHECKS['famcc']} runs: its best candidate under {NOISE_CHECK_CONDITION}, "
             f"and the same with its observer {SLOWER_OBSERVER:g}x slower nominal and under "
-            f"{NOISE_CHECK_CONDITION}; the one with the least sum of its two objectives is "
+            f"{NOISE_CHECK_CONDITION}; the one with the least product of its two objectives is "
             "chosen, as an observer tuned without noise picks a bandwidth noise punishes). "
             "Objective `J = IAE / (band T) + 0.01 TV(u) / H + 10 [never settled]`, "
             "`J = 1e6` when diverged (`H` the plant's holding input). The best candidate is "

@@ -132,8 +132,11 @@ def _noise_checked(
 
     The best nominal candidate and the same with its observer slower
     (``Space.slowed``; its nominal run joins the history) run under
-    ``NOISE_CHECK_CONDITION``; the one with the least sum of its nominal and
-    noisy objectives is chosen (its nominal run stands for it).
+    ``NOISE_CHECK_CONDITION``; the one with the least product of its nominal and
+    noisy objectives is chosen (its nominal run stands for it): the product weighs
+    their relative changes alike, where a sum follows the noisy run's objective,
+    10-100x the nominal one (measured: the sum chose a two-link-arm candidate with
+    19x the best nominal objective, TV(u) 2e4/s against 88/s).
     """
     best: dict[tuple[str, str], tuple[np.ndarray, float, dict[str, Any]]] = {}
     slowed: dict[tuple[str, str], np.ndarray] = {}
@@ -158,6 +161,6 @@ def _noise_checked(
     out = {}
     for key, es in candidates.items():
         js = noisy[key]
-        i = min(range(len(es)), key=lambda i: es[i][1] + js[i])
+        i = min(range(len(es)), key=lambda i: es[i][1] * js[i])
         out[key] = es[i]
     return out, noisy
