@@ -56,3 +56,21 @@ def test_own_plant_notebook_runs(tmp_path):
     text = "".join(o.get("text", "") for o in outputs if o.get("output_type") == "stream")
     assert "requirement met" in text
     assert any("image/png" in o.get("data", {}) for o in outputs)
+
+
+def test_compare_on_an_own_plant_runs(tmp_path):
+    """examples/compare_own_plant.py (an order-1 tank of the user's own) in its quick form."""
+    proc = subprocess.run(
+        [sys.executable, str(EXAMPLES / "compare_own_plant.py"), str(tmp_path), "--quick"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "MPLBACKEND": "Agg"},
+        timeout=600,
+        check=False,
+    )
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    for cond in ("nominal", "saturated", "noise 1e-3", "dispersion", "200 Hz"):
+        assert re.search(
+            rf"^{cond} +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+x", proc.stdout, re.MULTILINE
+        ), proc.stdout
+    assert "## tank" in (tmp_path / "report.md").read_text()

@@ -75,7 +75,7 @@ def build(kind: str, p: dict[str, Any], dt: float, u_limits: tuple[float, float]
             n, dt, _core.FiniteTime(k=k, p=p.get("p", 0.5)), constraint="lateral", eps=eps, **common
         )
     if p["family"] == "linear":  # Linear(k) stages, LoMC on s ~ k^(n-1) z1, flexible boundary
-        stages = [_core.Linear(k) for _ in range(n - 1)]
+        stages = [_core.Linear(k) for _ in range(n - 1)] or None  # order 1: no stages
         return _core.Controller(
             n, dt, stages, constraint="longitudinal", eps=eps * k ** (n - 1), **common
         )

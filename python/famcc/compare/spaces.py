@@ -71,8 +71,9 @@ class Space:
         return np.array(out)
 
 
-#: famcc's law family with the observer, by order (``"linear"`` above).
-_OBSERVED_FAMILY = {1: "finite-time", 2: "finite-time"}
+#: famcc's law family with the observer, by order (``"linear"`` at the others:
+#: the lateral constraint needs order 2 or more).
+_OBSERVED_FAMILY = {2: "finite-time"}
 
 #: How much slower the observer of famcc's noise-checked variant is (``mu`` x 4).
 SLOWER_OBSERVER = 4.0
@@ -94,15 +95,15 @@ def famcc_candidates(
 ) -> Space:
     """famcc's parameter ranges on a plant: its laws with the observer (docs/observer.md).
 
-    At orders 1-2 (``FiniteTime(k, p)`` on the lateral constraint): the law's
+    At order 2 (``FiniteTime(k, p)`` on the lateral constraint): the law's
     gain ``k`` (1/s) in [0.3, 100], its exponent ``p`` in [0.5, 0.95]
     (uniform), ``T_s`` in [0.1, 2] s, ``eps`` in [0.05, 1] x band, ``k_u`` in
     [0.3, 100] x ``H``, the observer's ``mu`` (``obs_mu``) in [1, 100] ms,
     log-uniform but ``p``; default ``k = 10``, ``p = 0.7``, ``T_s = 0.5`` s,
     ``eps`` = band / 2, ``k_u = 10 H``, ``mu = 10`` ms.
 
-    From order 3 (``Linear(k)`` stages on the longitudinal constraint of width
-    ``eps k^(n-1)``, famcc's flexible boundary): ``k`` in [1, 200] (ADRC's
+    At order 1 and from order 3 (``Linear(k)`` stages, none at order 1, on the
+    longitudinal constraint of width ``eps k^(n-1)``, famcc's flexible boundary): ``k`` in [1, 200] (ADRC's
     ``w_cl`` range), ``T_s`` and ``eps`` as above, and the two other poles as
     ratios to ``k``: the constraint loop's ``2 b0 k_u / (eps k^(n-1))`` =
     ``u_ratio k``, ``u_ratio`` in [1, 30], and the observer's ``1 / mu`` =
