@@ -212,27 +212,31 @@ def test_the_slower_observer_is_the_documented_factor():
     assert cmp.space("adrc", cmp.cases()[0]).slowed(np.array([0.5, 0.5])) is None
 
 
-def test_the_noise_check_chooses_the_least_sum_and_spends_its_runs():
-    """A fake pool: objective J = the point's first coordinate, plus its last one under noise."""
+def _noise_check(objective, starts):
+    """famcc's noise check on example 1 with a fake pool: ``objective(u, noisy) -> J``;
+    ``starts``: the nominal history's points. Returns (chosen point, noisy objectives,
+    history, tasks run)."""
     from famcc.compare import tuning
-
-    class Pool:
-        def __init__(self):
-            self.tasks = []
-
-        def map(self, tasks):
-            self.tasks += tasks
-            out = []
-            for t in tasks:
-                u = np.array(t["u"])
-                j = u[0] + (3.0 * (1.0 - u[-1]) if t["condition"] != "nominal" else 0.0)
-                out.append({**t, "metrics": {"objective": float(j)}})
-            return out
 
     case = cmp.cases()[0]
     sp = cmp.space("famcc", case)
     key = (case.name, "famcc")
-    hist = {key: [(np.full(sp.dims, 0.1), 0.1, {}), (np.full(sp.dims, 0.3), 0.3, {})]}
+    tasks_run = []
+
+    class Pool:
+        def map(self, tasks):
+            tasks_run.extend(tasks)
+            return [
+                {
+                    **t,
+                    "metrics": {
+                        "objective": float(objective(np.array(t["u"]), t["condition"] != "nominal"))
+                    },
+                }
+                for t in tasks
+            ]
+
+    hist = {key: [(u, float(objective(u, False)), {}) for u in starts]}
 
     def tasks_for(points, condition="nominal"):
         return [
@@ -245,49 +249,35 @@ def test_the_noise_check_chooses_the_least_sum_and_spends_its_runs():
         for r in results:
             hist[(r["case"], r["kind"])].append((np.array(r["u"]), r["metrics"]["objective"], {}))
 
-    pool = Pool()
-    chosen, noisy = tuning._noise_checked(pool, hist, {key: [sp]}, tasks_for, record)
-    assert len(pool.tasks) == tuning.NOISE_CHECKS["famcc"] == 3
-    slow = sp.slowed(np.full(sp.dims, 0.1))
+    chosen, noisy = tuning._noise_checked(Pool(), hist, {key: [sp]}, tasks_for, record)
+    return chosen[key][0], noisy[key], hist[key], tasks_run, sp
+
+
+def test_the_noise_check_chooses_the_slower_observer_when_noise_rewards_it():
+    """J = the first coordinate, plus 3 (1 - the observer's coordinate) under noise."""
+    from famcc.compare import tuning
+
+    def objective(u, noisy):
+        return u[0] + (3.0 * (1.0 - u[-1]) if noisy else 0.0)
+
+    best = np.full(6, 0.1)
+    chosen, noisy, hist, tasks, sp = _noise_check(objective, [best, np.full(6, 0.3)])
+    assert len(tasks) == tuning.NOISE_CHECKS["famcc"] == 3
     # the slower observer pays less under noise here: it is chosen
-    assert np.array_equal(chosen[key][0], slow)
-    assert len(noisy[key]) == 2 and len(hist[key]) == 3
-    # and the best nominal one when noise costs nothing
+    assert np.array_equal(chosen, sp.slowed(best))
+    assert len(noisy) == 2 and len(hist) == 3
 
 
 def test_the_noise_check_weighs_relative_changes_not_the_noisy_scale():
     """Nominal 0.1 -> 2.0 (20x worse) for a noisy 100 -> 60: the slower candidate is
     not chosen (the product rule; a sum would follow the noisy run's larger scale)."""
-    from famcc.compare import tuning
 
-    class Pool:
-        def map(self, tasks):
-            out = []
-            for t in tasks:
-                x = np.array(t["u"])[-1] - 0.1
-                noisy = t["condition"] != "nominal"
-                j = 100.0 - 133.0 * x if noisy else 0.1 + 6.3 * x
-                out.append({**t, "metrics": {"objective": float(j)}})
-            return out
+    def objective(u, noisy):
+        x = u[-1] - 0.1
+        return 100.0 - 133.0 * x if noisy else 0.1 + 6.3 * x
 
-    case = cmp.cases()[0]
-    sp = cmp.space("famcc", case)
-    key = (case.name, "famcc")
-    best = np.full(sp.dims, 0.1)
-    hist = {key: [(best, 0.1, {})]}
-
-    def tasks_for(points, condition="nominal"):
-        return [
-            {"case": k[0], "kind": k[1], "u": u.tolist(), "condition": condition}
-            for k, us in points.items()
-            for u in us
-        ]
-
-    def record(results):
-        for r in results:
-            hist[key].append((np.array(r["u"]), r["metrics"]["objective"], {}))
-
-    chosen, noisy = tuning._noise_checked(Pool(), hist, {key: [sp]}, tasks_for, record)
-    assert noisy[key][1] < noisy[key][0]  # the slower one is better under noise
-    assert hist[key][1][1] > 10 * hist[key][0][1]  # and far worse nominally
-    assert np.array_equal(chosen[key][0], best)
+    best = np.full(6, 0.1)
+    chosen, noisy, hist, _, _ = _noise_check(objective, [best])
+    assert noisy[1] < noisy[0]  # the slower one is better under noise
+    assert hist[1][1] > 10 * hist[0][1]  # and far worse nominally
+    assert np.array_equal(chosen, best)

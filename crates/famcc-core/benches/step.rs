@@ -30,6 +30,8 @@
 
 #[path = "../tests/suite/common/mod.rs"]
 pub mod common;
+#[cfg(feature = "observer")]
+pub use common::observed;
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -319,22 +321,6 @@ fn with_disc<T: Real, const N: usize>(c: &Controller<T, N>, disc: Discretization
 /// Example 1 (LaMC finite-time), closed loop on the second-order plant
 /// (variant "code", limits +-100); `disc` replaces the differentiator's
 /// discretization for the replay (the inputs stay those of the exact run).
-/// The law of `plain` without its differentiator, on the observer (`mu = 0.02`,
-/// `b0 = 1`, `delta = 10`; benches/observed.rs, examples/callgrind_step.rs).
-#[cfg(feature = "observer")]
-pub fn observed<T: Real, const N: usize>(plain: &Controller<T, N>, hold: Discretization) -> Controller<T, N> {
-    let obs = famcc_core::ExtendedHighGain::binomial(T::from_f64(0.02), T::one()).with_discretization(hold);
-    let cfg = plain
-        .config()
-        .to_builder()
-        .differentiator(None)
-        .observer(Some(obs))
-        .cancellation_limit(Some(T::from_f64(10.0)))
-        .build()
-        .unwrap();
-    Controller::new(cfg)
-}
-
 pub fn ex1<T: Real>(disc: Discretization) -> Workload<Controller<T, 2>, T> {
     let c = common::example1::<T>(Variant::Code, DT);
     let mut closed = c; // Controller is Copy: c stays fresh

@@ -6,6 +6,8 @@
 //! The same holds with the observer (its steady step is compiled apart too).
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
+#[cfg(feature = "observer")]
+use super::common::observed;
 use super::common::{example1, example2, example3};
 use famcc_core::{Controller, Real};
 use famcc_paper::designs::Variant;
@@ -61,30 +63,12 @@ proptest! {
         same(example2::<f64>(v, 1e-3), &e)?;
         same(example3::<f64>(v, 1e-3), &e)?;
         same(example3::<f32>(v, 1e-3), &e)?;
+        // the observer's steady step is compiled apart too (common::observed)
         #[cfg(feature = "observer")]
         {
-            same(observed(example1::<f64>(v, 1e-3), famcc_core::Discretization::Foh), &e)?;
-            same(observed(example1::<f32>(v, 1e-3), famcc_core::Discretization::Exact), &e)?;
-            same(observed(example3::<f64>(v, 1e-3), famcc_core::Discretization::Exact), &e)?;
+            same(observed(&example1::<f64>(v, 1e-3), famcc_core::Discretization::Foh), &e)?;
+            same(observed(&example1::<f32>(v, 1e-3), famcc_core::Discretization::Exact), &e)?;
+            same(observed(&example3::<f64>(v, 1e-3), famcc_core::Discretization::Exact), &e)?;
         }
     }
-}
-
-/// The law of `plain` on the observer (`mu = 20 ms`, `b0 = 1`, `delta = 10`):
-/// its steady step is compiled apart too.
-#[cfg(feature = "observer")]
-fn observed<T: Real, const N: usize>(
-    plain: Controller<T, N>,
-    hold: famcc_core::Discretization,
-) -> Controller<T, N> {
-    let obs = famcc_core::ExtendedHighGain::binomial(T::from_f64(0.02), T::one()).with_discretization(hold);
-    let cfg = plain
-        .config()
-        .to_builder()
-        .differentiator(None)
-        .observer(Some(obs))
-        .cancellation_limit(Some(T::from_f64(10.0)))
-        .build()
-        .unwrap();
-    Controller::new(cfg)
 }

@@ -198,3 +198,23 @@ pub fn paper_loop(example: u8, variant: Variant, limits: (f64, f64)) -> Run {
         ),
     }
 }
+
+/// The law of `plain` without its differentiator, on the observer (`mu = 0.02`,
+/// `b0 = 1`, `delta = 10`): tests/suite/fast_path.rs, benches/observed.rs,
+/// examples/callgrind_step.rs.
+#[cfg(feature = "observer")]
+pub fn observed<T: Real, const N: usize>(
+    plain: &Controller<T, N>,
+    hold: famcc_core::Discretization,
+) -> Controller<T, N> {
+    let obs = famcc_core::ExtendedHighGain::binomial(T::from_f64(0.02), T::one()).with_discretization(hold);
+    let cfg = plain
+        .config()
+        .to_builder()
+        .differentiator(None)
+        .observer(Some(obs))
+        .cancellation_limit(Some(T::from_f64(10.0)))
+        .build()
+        .unwrap();
+    Controller::new(cfg)
+}
