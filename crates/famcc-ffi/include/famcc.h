@@ -27,62 +27,62 @@
 /**
  * 64-bit words of `FamccO1F32` (the controller, its tag and headroom).
  */
-#define FAMCC_O1_F32_WORDS 56
+#define FAMCC_O1_F32_WORDS 72
 
 /**
  * 64-bit words of `FamccO1F64` (the controller, its tag and headroom).
  */
-#define FAMCC_O1_F64_WORDS 104
+#define FAMCC_O1_F64_WORDS 128
 
 /**
  * 64-bit words of `FamccO2F32` (the controller, its tag and headroom).
  */
-#define FAMCC_O2_F32_WORDS 72
+#define FAMCC_O2_F32_WORDS 96
 
 /**
  * 64-bit words of `FamccO2F64` (the controller, its tag and headroom).
  */
-#define FAMCC_O2_F64_WORDS 128
+#define FAMCC_O2_F64_WORDS 168
 
 /**
  * 64-bit words of `FamccO3F32` (the controller, its tag and headroom).
  */
-#define FAMCC_O3_F32_WORDS 88
+#define FAMCC_O3_F32_WORDS 112
 
 /**
  * 64-bit words of `FamccO3F64` (the controller, its tag and headroom).
  */
-#define FAMCC_O3_F64_WORDS 152
+#define FAMCC_O3_F64_WORDS 216
 
 /**
  * 64-bit words of `FamccO4F32` (the controller, its tag and headroom).
  */
-#define FAMCC_O4_F32_WORDS 104
+#define FAMCC_O4_F32_WORDS 144
 
 /**
  * 64-bit words of `FamccO4F64` (the controller, its tag and headroom).
  */
-#define FAMCC_O4_F64_WORDS 184
+#define FAMCC_O4_F64_WORDS 264
 
 /**
  * 64-bit words of `FamccO5F32` (the controller, its tag and headroom).
  */
-#define FAMCC_O5_F32_WORDS 120
+#define FAMCC_O5_F32_WORDS 168
 
 /**
  * 64-bit words of `FamccO5F64` (the controller, its tag and headroom).
  */
-#define FAMCC_O5_F64_WORDS 224
+#define FAMCC_O5_F64_WORDS 312
 
 /**
  * 64-bit words of `FamccO6F32` (the controller, its tag and headroom).
  */
-#define FAMCC_O6_F32_WORDS 136
+#define FAMCC_O6_F32_WORDS 200
 
 /**
  * 64-bit words of `FamccO6F64` (the controller, its tag and headroom).
  */
-#define FAMCC_O6_F64_WORDS 256
+#define FAMCC_O6_F64_WORDS 376
 
 /**
  * The largest number of findings `*_lint` writes (one per kind of risk).
@@ -98,6 +98,11 @@
  * The largest number of manifold stages (`order - 1`).
  */
 #define FAMCC_MAX_STAGES (FAMCC_MAX_ORDER - 1)
+
+/**
+ * The largest number of observer coefficients (`order + 1`).
+ */
+#define FAMCC_MAX_OBSERVER_COEFFICIENTS (FAMCC_MAX_ORDER + 1)
 
 /**
  * Constraint kinds (`FamccConstraint.kind`).
@@ -587,6 +592,47 @@ typedef struct FamccDifferentiator_f32 {
 } FamccDifferentiator_f32;
 
 /**
+ * The extended high-gain observer (famcc-core's `ExtendedHighGain`,
+ * docs/observer.md; beyond the paper): it replaces the differentiator
+ * (`differentiator.enabled` must then be 0, `integral` 0), estimates the
+ * lumped term of `y^(n) = L + b0 u` from the error and the applied input,
+ * and the law cancels it bounded, `u = v - clip(Lhat / b0, -delta, delta)`.
+ * `famcc_observer_f32_binomial` / `_f64_` fill the default coefficients.
+ */
+typedef struct FamccObserver_f32 {
+  /**
+   * Nonzero: use it.
+   */
+  uint32_t enabled;
+  /**
+   * Time constant `mu > 0`, seconds.
+   */
+  float mu;
+  /**
+   * Hurwitz coefficients `a_1..a_(order+1)` of
+   * `s^(order+1) + a_1 s^order + ... + a_(order+1)` (the rest is ignored).
+   */
+  float a[FAMCC_MAX_OBSERVER_COEFFICIENTS];
+  /**
+   * The nominal input gain `b0` (nonzero; its sign is the control direction).
+   */
+  float b0;
+  /**
+   * `FAMCC_DISCRETIZATION_EXACT` (the error held) or `_FOH`.
+   */
+  uint32_t discretization;
+  /**
+   * Nonzero: bound the cancellation by `cancellation_limit`; zero: by
+   * half the output range (finite output limits are then required).
+   */
+  uint32_t has_cancellation_limit;
+  /**
+   * The cancellation's bound `delta > 0`, input units.
+   */
+  float cancellation_limit;
+} FamccObserver_f32;
+
+/**
  * Everything that defines a controller (mirrors `famcc_core::Config`).
  * Fill it with `famcc_config_f32_defaults` / `_f64_defaults`, then set the
  * required values.
@@ -689,6 +735,12 @@ typedef struct FamccConfig_f32 {
    * The output the first step starts from.
    */
   float initial_output;
+  /**
+   * The extended observer and its bounded cancellation (beyond the paper;
+   * off by default). The last member, so the members before it keep
+   * their offsets.
+   */
+  struct FamccObserver_f32 observer;
 } FamccConfig_f32;
 
 /**
@@ -909,6 +961,47 @@ typedef struct FamccDifferentiator_f64 {
 } FamccDifferentiator_f64;
 
 /**
+ * The extended high-gain observer (famcc-core's `ExtendedHighGain`,
+ * docs/observer.md; beyond the paper): it replaces the differentiator
+ * (`differentiator.enabled` must then be 0, `integral` 0), estimates the
+ * lumped term of `y^(n) = L + b0 u` from the error and the applied input,
+ * and the law cancels it bounded, `u = v - clip(Lhat / b0, -delta, delta)`.
+ * `famcc_observer_f32_binomial` / `_f64_` fill the default coefficients.
+ */
+typedef struct FamccObserver_f64 {
+  /**
+   * Nonzero: use it.
+   */
+  uint32_t enabled;
+  /**
+   * Time constant `mu > 0`, seconds.
+   */
+  double mu;
+  /**
+   * Hurwitz coefficients `a_1..a_(order+1)` of
+   * `s^(order+1) + a_1 s^order + ... + a_(order+1)` (the rest is ignored).
+   */
+  double a[FAMCC_MAX_OBSERVER_COEFFICIENTS];
+  /**
+   * The nominal input gain `b0` (nonzero; its sign is the control direction).
+   */
+  double b0;
+  /**
+   * `FAMCC_DISCRETIZATION_EXACT` (the error held) or `_FOH`.
+   */
+  uint32_t discretization;
+  /**
+   * Nonzero: bound the cancellation by `cancellation_limit`; zero: by
+   * half the output range (finite output limits are then required).
+   */
+  uint32_t has_cancellation_limit;
+  /**
+   * The cancellation's bound `delta > 0`, input units.
+   */
+  double cancellation_limit;
+} FamccObserver_f64;
+
+/**
  * Everything that defines a controller (mirrors `famcc_core::Config`).
  * Fill it with `famcc_config_f32_defaults` / `_f64_defaults`, then set the
  * required values.
@@ -1011,6 +1104,12 @@ typedef struct FamccConfig_f64 {
    * The output the first step starts from.
    */
   double initial_output;
+  /**
+   * The extended observer and its bounded cancellation (beyond the paper;
+   * off by default). The last member, so the members before it keep
+   * their offsets.
+   */
+  struct FamccObserver_f64 observer;
 } FamccConfig_f64;
 
 /**
@@ -1176,6 +1275,16 @@ typedef struct FamccDiagnostics_f32 {
    * have headroom (output limits set or `*_step_applied` used).
    */
   uint64_t unsaturated_expansions;
+  /**
+   * The observer's cancellation `clip(Lhat / b0, -delta, delta)` in the
+   * output (0 without an observer).
+   */
+  float cancellation;
+  /**
+   * The observer's estimate `Lhat` of the lumped term, output units per
+   * `s^order`, for the next step (0 without an observer).
+   */
+  float lumped;
 } FamccDiagnostics_f32;
 
 /**
@@ -1344,6 +1453,16 @@ typedef struct FamccDiagnostics_f64 {
    * have headroom (output limits set or `*_step_applied` used).
    */
   uint64_t unsaturated_expansions;
+  /**
+   * The observer's cancellation `clip(Lhat / b0, -delta, delta)` in the
+   * output (0 without an observer).
+   */
+  double cancellation;
+  /**
+   * The observer's estimate `Lhat` of the lumped term, output units per
+   * `s^order`, for the next step (0 without an observer).
+   */
+  double lumped;
 } FamccDiagnostics_f64;
 
 /**
@@ -1420,6 +1539,16 @@ typedef struct FamccO6F32 {
 typedef struct FamccO6F64 {
   uint64_t _opaque[FAMCC_O6_F64_WORDS];
 } FamccO6F64;
+
+/**
+ * `float` observer.
+ */
+typedef struct FamccObserver_f32 FamccObserverF32;
+
+/**
+ * `double` observer.
+ */
+typedef struct FamccObserver_f64 FamccObserverF64;
 
 #ifdef __cplusplus
 extern "C" {
@@ -2548,6 +2677,25 @@ FamccStatus famcc_o6_f64_lint(const struct FamccO6F64 *c,
                               struct FamccFinding *out,
                               size_t capacity,
                               size_t *count);
+
+/**
+ * Writes the observer of a controller of `order` (1 to 6; the plant's
+ * order) with time constant `mu` and nominal input gain `b0` to `out`,
+ * enabled, with famcc-core's default coefficients: every pole of the
+ * estimation error at `-2 / mu`, `(s + 2)^(order+1)`; the error held
+ * (`FAMCC_DISCRETIZATION_EXACT`); the cancellation bounded by half the
+ * output range. `mu` and `b0` are checked by `*_init`.
+ * `FAMCC_STATUS_INVALID_CONFIG` for an order out of range.
+ */
+FamccStatus famcc_observer_f32_binomial(uint32_t order, float mu, float b0, FamccObserverF32 *out);
+
+/**
+ * `double` version of `famcc_observer_f32_binomial`.
+ */
+FamccStatus famcc_observer_f64_binomial(uint32_t order,
+                                        double mu,
+                                        double b0,
+                                        FamccObserverF64 *out);
 
 #ifdef __cplusplus
 } // extern "C"

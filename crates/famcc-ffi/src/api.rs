@@ -11,7 +11,7 @@ use crate::storage::{diagnostics, discretize, fits, init, magic, reset, step};
 use crate::types::*;
 
 /// 64-bit words of `FamccO1F32` (the controller, its tag and headroom).
-pub const FAMCC_O1_F32_WORDS: usize = 56;
+pub const FAMCC_O1_F32_WORDS: usize = 72;
 
 /// Storage for an order-1 `float` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -24,7 +24,7 @@ const MAGIC_O1_F32: u64 = magic(1, 32);
 const _: () = assert!(fits::<FamccO1F32, f32, 1>());
 
 /// 64-bit words of `FamccO1F64` (the controller, its tag and headroom).
-pub const FAMCC_O1_F64_WORDS: usize = 104;
+pub const FAMCC_O1_F64_WORDS: usize = 128;
 
 /// Storage for an order-1 `double` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -37,7 +37,7 @@ const MAGIC_O1_F64: u64 = magic(1, 64);
 const _: () = assert!(fits::<FamccO1F64, f64, 1>());
 
 /// 64-bit words of `FamccO2F32` (the controller, its tag and headroom).
-pub const FAMCC_O2_F32_WORDS: usize = 72;
+pub const FAMCC_O2_F32_WORDS: usize = 96;
 
 /// Storage for an order-2 `float` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -50,7 +50,7 @@ const MAGIC_O2_F32: u64 = magic(2, 32);
 const _: () = assert!(fits::<FamccO2F32, f32, 2>());
 
 /// 64-bit words of `FamccO2F64` (the controller, its tag and headroom).
-pub const FAMCC_O2_F64_WORDS: usize = 128;
+pub const FAMCC_O2_F64_WORDS: usize = 168;
 
 /// Storage for an order-2 `double` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -63,7 +63,7 @@ const MAGIC_O2_F64: u64 = magic(2, 64);
 const _: () = assert!(fits::<FamccO2F64, f64, 2>());
 
 /// 64-bit words of `FamccO3F32` (the controller, its tag and headroom).
-pub const FAMCC_O3_F32_WORDS: usize = 88;
+pub const FAMCC_O3_F32_WORDS: usize = 112;
 
 /// Storage for an order-3 `float` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -76,7 +76,7 @@ const MAGIC_O3_F32: u64 = magic(3, 32);
 const _: () = assert!(fits::<FamccO3F32, f32, 3>());
 
 /// 64-bit words of `FamccO3F64` (the controller, its tag and headroom).
-pub const FAMCC_O3_F64_WORDS: usize = 152;
+pub const FAMCC_O3_F64_WORDS: usize = 216;
 
 /// Storage for an order-3 `double` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -89,7 +89,7 @@ const MAGIC_O3_F64: u64 = magic(3, 64);
 const _: () = assert!(fits::<FamccO3F64, f64, 3>());
 
 /// 64-bit words of `FamccO4F32` (the controller, its tag and headroom).
-pub const FAMCC_O4_F32_WORDS: usize = 104;
+pub const FAMCC_O4_F32_WORDS: usize = 144;
 
 /// Storage for an order-4 `float` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -102,7 +102,7 @@ const MAGIC_O4_F32: u64 = magic(4, 32);
 const _: () = assert!(fits::<FamccO4F32, f32, 4>());
 
 /// 64-bit words of `FamccO4F64` (the controller, its tag and headroom).
-pub const FAMCC_O4_F64_WORDS: usize = 184;
+pub const FAMCC_O4_F64_WORDS: usize = 264;
 
 /// Storage for an order-4 `double` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -115,7 +115,7 @@ const MAGIC_O4_F64: u64 = magic(4, 64);
 const _: () = assert!(fits::<FamccO4F64, f64, 4>());
 
 /// 64-bit words of `FamccO5F32` (the controller, its tag and headroom).
-pub const FAMCC_O5_F32_WORDS: usize = 120;
+pub const FAMCC_O5_F32_WORDS: usize = 168;
 
 /// Storage for an order-5 `float` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -128,7 +128,7 @@ const MAGIC_O5_F32: u64 = magic(5, 32);
 const _: () = assert!(fits::<FamccO5F32, f32, 5>());
 
 /// 64-bit words of `FamccO5F64` (the controller, its tag and headroom).
-pub const FAMCC_O5_F64_WORDS: usize = 224;
+pub const FAMCC_O5_F64_WORDS: usize = 312;
 
 /// Storage for an order-5 `double` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -141,7 +141,7 @@ const MAGIC_O5_F64: u64 = magic(5, 64);
 const _: () = assert!(fits::<FamccO5F64, f64, 5>());
 
 /// 64-bit words of `FamccO6F32` (the controller, its tag and headroom).
-pub const FAMCC_O6_F32_WORDS: usize = 136;
+pub const FAMCC_O6_F32_WORDS: usize = 200;
 
 /// Storage for an order-6 `float` controller (opaque; 8-byte aligned).
 #[repr(C)]
@@ -154,7 +154,7 @@ const MAGIC_O6_F32: u64 = magic(6, 32);
 const _: () = assert!(fits::<FamccO6F32, f32, 6>());
 
 /// 64-bit words of `FamccO6F64` (the controller, its tag and headroom).
-pub const FAMCC_O6_F64_WORDS: usize = 256;
+pub const FAMCC_O6_F64_WORDS: usize = 376;
 
 /// Storage for an order-6 `double` controller (opaque; 8-byte aligned).
 #[repr(C)]

@@ -18,17 +18,19 @@ use std::fmt::Write;
 use std::string::String;
 
 /// 64-bit words of storage per order, `(float, double)`: the controller and
-/// its tag word (x86_64, famcc-core of 2026-12-02: 43/77, 54/98, 65/121,
-/// 78/146, 91/173, 106/202 in use) plus ~25 % headroom, rounded up to 8,
-/// so that famcc-core can grow without an ABI change. A size is part of the
-/// ABI: it changes only on purpose. `storage_fits` checks it on every target.
+/// its tag word (x86_64, famcc-core of 2026-12-07 with the observer:
+/// 56/101, 72/132, 89/167, 109/206, 130/249, 154/296 in use) plus ~25 %
+/// headroom, rounded up to 8, so that famcc-core can grow without an ABI
+/// change. A size is part of the ABI: it changes only on purpose (it grew
+/// on 2026-12-07 for the observer's state). `storage_fits` checks it on
+/// every target.
 const WORDS: [(usize, usize); FAMCC_MAX_ORDER] = [
-    (56, 104),
     (72, 128),
-    (88, 152),
-    (104, 184),
-    (120, 224),
-    (136, 256),
+    (96, 168),
+    (112, 216),
+    (144, 264),
+    (168, 312),
+    (200, 376),
 ];
 
 /// The C types of one controller type.

@@ -72,7 +72,7 @@ pub(crate) const DISCRETIZATIONS: [(u32, Discretization); 4] = [
 ];
 
 /// The core's value of the C value `v` (errors name `name` and the rule).
-fn from_c<E: Copy>(
+pub(crate) fn from_c<E: Copy>(
     table: &Table<E>,
     v: u32,
     name: &'static str,
@@ -272,7 +272,11 @@ fn to_builder<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<ConfigBuild
         .integral(c.integral != 0)
         .output_limits((c.has_output_limits != 0).then_some((out_lo, out_hi)))
         .rate_limit((c.has_rate_limit != 0).then_some(c.rate_limit))
-        .initial_output((c.has_initial_output != 0).then_some(c.initial_output));
+        .initial_output((c.has_initial_output != 0).then_some(c.initial_output))
+        .observer(crate::observer::to_core(&c.observer)?)
+        .cancellation_limit(
+            (c.observer.has_cancellation_limit != 0).then_some(c.observer.cancellation_limit),
+        );
     b = match c.flexible {
         x if x == FamccFlexible::Off as u32 => b.rho_e(None),
         x if x == FamccFlexible::On as u32 => b.rho_e(Some(c.rho_e)),
@@ -322,10 +326,12 @@ pub(crate) fn defaults<T: Real>() -> FamccConfig<T> {
         rate_limit: z,
         has_initial_output: 0,
         initial_output: z,
+        observer: FamccObserver::default(),
     }
 }
 
-pub(crate) fn diag_to_c<T: Real, const N: usize>(d: &Diagnostics<T, N>) -> FamccDiagnostics<T> {
+/// `d` as C diagnostics, with the observer's estimate `lumped`.
+pub(crate) fn diag_to_c<T: Real, const N: usize>(d: &Diagnostics<T, N>, lumped: T) -> FamccDiagnostics<T> {
     let pad = |src: &[T; N]| {
         let mut a = [T::zero(); FAMCC_MAX_ORDER];
         a.iter_mut().zip(src.iter()).for_each(|(d, s)| *d = *s);
@@ -354,5 +360,7 @@ pub(crate) fn diag_to_c<T: Real, const N: usize>(d: &Diagnostics<T, N>) -> Famcc
         integrating: u32::from(d.integrating),
         integral: d.integral.unwrap_or_else(T::zero),
         unsaturated_expansions: d.unsaturated_expansions,
+        cancellation: d.cancellation,
+        lumped,
     }
 }

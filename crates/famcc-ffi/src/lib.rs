@@ -34,7 +34,9 @@ mod api;
 #[cfg(test)]
 mod api_gen;
 mod convert;
+pub mod enums;
 mod lint;
+mod observer;
 pub mod reports;
 mod storage;
 pub mod types;
@@ -43,6 +45,7 @@ use core::ffi::c_char;
 use core::ptr;
 
 pub use api::*;
+pub use observer::{famcc_observer_f32_binomial, famcc_observer_f64_binomial};
 pub use reports::*;
 pub use types::*;
 // ---------------------------------------------------------------------------
@@ -140,6 +143,8 @@ mod tests_options;
 mod tests_discretized;
 #[cfg(test)]
 mod tests_foh;
+#[cfg(test)]
+mod tests_observer;
 #[cfg(test)]
 mod tests_orders;
 

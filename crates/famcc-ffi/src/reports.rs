@@ -57,6 +57,12 @@ pub struct FamccDiagnostics<T> {
     /// Steps at which the bounds expanded while the actuator was known to
     /// have headroom (output limits set or `*_step_applied` used).
     pub unsaturated_expansions: u64,
+    /// The observer's cancellation `clip(Lhat / b0, -delta, delta)` in the
+    /// output (0 without an observer).
+    pub cancellation: T,
+    /// The observer's estimate `Lhat` of the lumped term, output units per
+    /// `s^order`, for the next step (0 without an observer).
+    pub lumped: T,
 }
 
 /// One legal but risky choice of a configuration (famcc-core's

@@ -179,7 +179,7 @@ pub(crate) unsafe fn diagnostics<S, T: Real, const N: usize>(
     }
     match slot_ref::<S, T, N>(storage, tag) {
         Ok(s) => {
-            ptr::write_unaligned(out, diag_to_c(&s.ctrl.diagnostics()));
+            ptr::write_unaligned(out, diag_to_c(&s.ctrl.diagnostics(), s.ctrl.lumped()));
             FamccStatus::Ok
         }
         Err(st) => st,

@@ -59,6 +59,14 @@ pub(super) fn c_config<T: Real, const N: usize>(cfg: &Config<T, N>) -> FamccConf
         c.differentiator.discretization = convert::to_c(&convert::DISCRETIZATIONS, h.discretization);
         c.differentiator.prefilter = h.prefilter;
     }
+    if let Some((lo, hi)) = cfg.output_limits() {
+        (c.has_output_limits, c.output_limits) = (1, [lo, hi]);
+    }
+    if let Some(o) = cfg.observer() {
+        c.observer = observer::to_c(o);
+        c.observer.has_cancellation_limit = 1;
+        c.observer.cancellation_limit = cfg.cancellation_limit().unwrap();
+    }
     c
 }
 

@@ -246,5 +246,6 @@ pub(crate) fn c_variant<T: Real>(v: &Case, order: usize) -> FamccConfig<T> {
         rate_limit: T::zero(),
         has_initial_output: 0,
         initial_output: T::zero(),
+        observer: FamccObserver::default(),
     }
 }

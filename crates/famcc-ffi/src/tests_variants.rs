@@ -30,9 +30,10 @@ fn wild_signal<T: Real>(n: usize) -> std::vec::Vec<T> {
 fn same_diagnostics<T: Real + core::fmt::Debug, const N: usize>(
     c: &FamccDiagnostics<T>,
     r: &famcc_core::Diagnostics<T, N>,
+    lumped: T,
     what: &str,
 ) {
-    let want = convert::diag_to_c(r);
+    let want = convert::diag_to_c(r, lumped);
     let bits = |d: &FamccDiagnostics<T>| std::format!("{d:?}");
     // Debug text of the floats is exact (shortest round trip) and NaN-free here.
     assert_eq!(bits(c), bits(&want), "{what}");
@@ -119,6 +120,7 @@ macro_rules! variants_match {
                         same_diagnostics(
                             &unsafe { d.assume_init() },
                             &r,
+                            ctrl.lumped(),
                             &std::format!("{what} step {k}"),
                         );
                         if pass == 0 {

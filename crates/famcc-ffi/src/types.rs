@@ -1,150 +1,16 @@
-//! The C-facing types: status codes, enumeration values and the
-//! configuration structs (what the functions report back is in
-//! [`crate::reports`]; the opaque storage of each controller type is
-//! generated, in `api.rs`). cbindgen writes `include/famcc.h` from them.
+//! The C-facing types: the configuration structs (the status codes and
+//! enumeration values are in [`crate::enums`], what the functions report
+//! back in [`crate::reports`]; the opaque storage of each controller type
+//! is generated, in `api.rs`). cbindgen writes `include/famcc.h` from them.
+
+pub use crate::enums::*;
 
 /// The largest system order this ABI supports (arrays below are sized by it).
 pub const FAMCC_MAX_ORDER: usize = 6;
 /// The largest number of manifold stages (`order - 1`).
 pub const FAMCC_MAX_STAGES: usize = FAMCC_MAX_ORDER - 1;
-
-/// Result of every call. `FAMCC_STATUS_OK` is 0; errors are positive.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccStatus {
-    /// Success.
-    Ok = 0,
-    /// A required pointer argument was NULL.
-    NullPointer = 1,
-    /// The storage is not aligned to `*_align()` bytes.
-    Misaligned = 2,
-    /// The storage does not hold an initialised controller of this type.
-    NotInitialized = 3,
-    /// The configuration was rejected (details in `FamccError`); the storage
-    /// is left uninitialised.
-    InvalidConfig = 4,
-    /// The measurement was NaN or infinite; the state is unchanged.
-    NonFiniteInput = 5,
-    /// The applied input was NaN or infinite; the state is unchanged.
-    NonFiniteApplied = 6,
-    /// A sample period was not finite and > 0.
-    InvalidDt = 7,
-    /// `step` at order >= 2 needs a differentiator (`differentiator.enabled`).
-    NoDifferentiator = 8,
-    /// The sample was finite but could not be used: the law overflowed on
-    /// the estimate, or the sample would have taken the estimate out of
-    /// range. After the first step the sample is consumed: the clock
-    /// advances and the estimate restarts (famcc-core's recovery rule,
-    /// docs/design.md §3.7), so the next moderate sample steps again; before
-    /// the first step nothing changes. `*v` is not written: hold the previous
-    /// output.
-    Overflow = 9,
-    /// `storage_size` of `*_init_sized` is smaller than the controller's
-    /// storage type (`*_size()`); nothing was written.
-    StorageTooSmall = 10,
-}
-
-/// Feedback law kinds (`FamccFeedback.kind`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccFeedbackKind {
-    /// `h(s) = -k s`; parameters `linear`.
-    Linear = 0,
-    /// `h(s) = -k |s|^p sign(s)`, `0 < p < 1`; parameters `finite_time`.
-    FiniteTime = 1,
-    /// `-alpha |s|^p sign(s) - beta |s|^q sign(s)`; parameters `fixed_time`.
-    FixedTime = 2,
-    /// The paper's variable-exponent law; parameters `variable_exponent`.
-    VariableExponent = 3,
-    /// Moulay's discontinuous law (comparison only); parameters `moulay`.
-    MoulayDiscontinuous = 4,
-}
-
-/// Skew kinds (`FamccSkew.kind`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccSkewKind {
-    /// No skew: `h_m = h_p`.
-    None = 0,
-    /// SSMD (smooth skewed manifold).
-    Smooth = 1,
-    /// NSMD (nonsingular skewed manifold), uses `k_pp`.
-    Nonsingular = 2,
-}
-
-/// Constraint kinds (`FamccConstraint.kind`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccConstraintKind {
-    /// LoMC: uses `eps_y`.
-    Longitudinal = 0,
-    /// LaMC: uses `eps_x`.
-    Lateral = 1,
-    /// OMC: uses `eps_x` and `eps_y`.
-    Oblique = 2,
-}
-
-/// The map Gamma of the control law (`FamccConfig.gamma`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccGamma {
-    /// `ln((1 + xi)/(1 - xi))`.
-    Log = 0,
-    /// `xi / ((1 + xi)(1 - xi))`.
-    Rational = 1,
-}
-
-/// Double-ended transitions (`FamccConfig.transition`, `FamccSkew.transition`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccTransition {
-    /// The paper's C-infinity transition.
-    Exponential = 0,
-    /// `3z^2 - 2z^3`.
-    Cubic = 1,
-    /// `10z^3 - 15z^4 + 6z^5`.
-    Quintic = 2,
-    /// `sin^2(pi z / 2)`.
-    Sine = 3,
-}
-
-/// How the envelopes' initial widths are latched (`FamccConfig.latch`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccLatch {
-    /// The paper: `rho0 = k0 max(|s0|, eps)`.
-    Paper = 0,
-    /// The authors' code: `rho0 = max(k0 |s0|, eps)`.
-    Authors = 1,
-}
-
-/// Differentiator discretizations (`FamccDifferentiator.discretization`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccDiscretization {
-    /// Zero-order hold (matrix exponential): stable for every dt.
-    Exact = 0,
-    /// Forward Euler (comparison only).
-    Euler = 1,
-    /// Tustin (bilinear).
-    Tustin = 2,
-    /// First-order (triangle) hold: the estimate of a sample uses that
-    /// sample; famcc's choice below 500 Hz up to order 3.
-    Foh = 3,
-}
-
-/// Whether and how the flexible boundaries are on (`FamccConfig.flexible`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FamccFlexible {
-    /// No flexible boundaries (the controller of eq. (29)).
-    Off = 0,
-    /// Flexible boundaries with the margin `rho_e`.
-    On = 1,
-    /// Flexible boundaries with famcc-core's margin, min(0.01, smallest
-    /// final width / 10) (the default).
-    Auto = 2,
-}
+/// The largest number of observer coefficients (`order + 1`).
+pub const FAMCC_MAX_OBSERVER_COEFFICIENTS: usize = FAMCC_MAX_ORDER + 1;
 
 /// `FAMCC_FEEDBACK_KIND_LINEAR` parameters.
 #[repr(C)]
@@ -269,6 +135,38 @@ pub struct FamccConstraint<T> {
     pub eps_y: T,
 }
 
+/// The extended high-gain observer (famcc-core's `ExtendedHighGain`,
+/// docs/observer.md; beyond the paper): it replaces the differentiator
+/// (`differentiator.enabled` must then be 0, `integral` 0), estimates the
+/// lumped term of `y^(n) = L + b0 u` from the error and the applied input,
+/// and the law cancels it bounded, `u = v - clip(Lhat / b0, -delta, delta)`.
+/// `famcc_observer_f32_binomial` / `_f64_` fill the default coefficients.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FamccObserver<T> {
+    /// Nonzero: use it.
+    pub enabled: u32,
+    /// Time constant `mu > 0`, seconds.
+    pub mu: T,
+    /// Hurwitz coefficients `a_1..a_(order+1)` of
+    /// `s^(order+1) + a_1 s^order + ... + a_(order+1)` (the rest is ignored).
+    pub a: [T; FAMCC_MAX_OBSERVER_COEFFICIENTS],
+    /// The nominal input gain `b0` (nonzero; its sign is the control direction).
+    pub b0: T,
+    /// `FAMCC_DISCRETIZATION_EXACT` (the error held) or `_FOH`.
+    pub discretization: u32,
+    /// Nonzero: bound the cancellation by `cancellation_limit`; zero: by
+    /// half the output range (finite output limits are then required).
+    pub has_cancellation_limit: u32,
+    /// The cancellation's bound `delta > 0`, input units.
+    pub cancellation_limit: T,
+}
+
+/// `float` observer.
+pub type FamccObserverF32 = FamccObserver<f32>;
+/// `double` observer.
+pub type FamccObserverF64 = FamccObserver<f64>;
+
 /// The high-gain differentiator (output feedback).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -343,6 +241,10 @@ pub struct FamccConfig<T: Copy> {
     pub has_initial_output: u32,
     /// The output the first step starts from.
     pub initial_output: T,
+    /// The extended observer and its bounded cancellation (beyond the paper;
+    /// off by default). The last member, so the members before it keep
+    /// their offsets.
+    pub observer: FamccObserver<T>,
 }
 
 /// `float` configuration.

@@ -1,10 +1,11 @@
 /*
  * famcc C ABI checks (issue 15): the storage checks every call makes, from C.
- * NULL, misaligned and undersized storage, the wrong controller type, and the
- * status texts. Built and run on the host by scripts/firmware-check.sh:
+ * NULL, misaligned and undersized storage, the wrong controller type, the
+ * observer's defaults and checks, and the status texts. Built and run on the host by scripts/firmware-check.sh:
  *   gcc -std=c11 -Wall -Wextra -Werror -I../../include abi_checks.c libfamcc_ffi.a -lm
  * Exit status: the number of failed checks.
  */
+#include <math.h>
 #include <stdalign.h>
 #include <stdio.h>
 #include <string.h>
@@ -100,6 +101,29 @@ int main(void)
           FAMCC_STATUS_INVALID_CONFIG);
     CHECK(strcmp(err.parameter, "discretized") == 0);
     CHECK(famcc_o2_f32_init_discretized(&precomputed, &cfg, NULL, &err) == FAMCC_STATUS_NULL_POINTER);
+
+    /* the observer: default coefficients, an order out of range, a bad b0 named */
+    FamccConfigF32 ocfg = cfg;
+    ocfg.differentiator.enabled = 0;
+    CHECK(famcc_observer_f32_binomial(2, 0.02f, 2.0f, &ocfg.observer) == FAMCC_STATUS_OK);
+    CHECK(ocfg.observer.enabled == 1 && ocfg.observer.a[2] == 8.0f); /* (s + 2)^3 */
+    CHECK(famcc_observer_f32_binomial(0, 0.02f, 2.0f, &ocfg.observer) == FAMCC_STATUS_INVALID_CONFIG);
+    CHECK(famcc_observer_f32_binomial(7, 0.02f, 2.0f, &ocfg.observer) == FAMCC_STATUS_INVALID_CONFIG);
+    CHECK(famcc_observer_f32_binomial(2, 0.02f, 2.0f, NULL) == FAMCC_STATUS_NULL_POINTER);
+    CHECK(famcc_o2_f32_init(&direct, &ocfg, &err) == FAMCC_STATUS_INVALID_CONFIG); /* no limits */
+    CHECK(strcmp(err.parameter, "cancellation_limit") == 0);
+    ocfg.has_output_limits = 1;
+    ocfg.output_limits[0] = -8.0f;
+    ocfg.output_limits[1] = 8.0f;
+    CHECK(famcc_o2_f32_init(&direct, &ocfg, &err) == FAMCC_STATUS_OK);
+    for (int k = 0; k < 100; k++) {
+        CHECK(famcc_o2_f32_step_applied(&direct, 0.2f, k == 0 ? 0.0f : v, &v) == FAMCC_STATUS_OK);
+    }
+    CHECK(famcc_o2_f32_diagnostics(&direct, &d) == FAMCC_STATUS_OK);
+    CHECK(d.lumped != 0.0f && d.cancellation != 0.0f && fabsf(d.cancellation) <= 8.0f); /* delta: half the range */
+    ocfg.observer.b0 = 0.0f;
+    CHECK(famcc_o2_f32_init(&direct, &ocfg, &err) == FAMCC_STATUS_INVALID_CONFIG);
+    CHECK(strcmp(err.parameter, "b0") == 0);
 
     /* every status has a text; OVERFLOW says the sample was consumed */
     for (uint32_t s = 0; s <= FAMCC_STATUS_STORAGE_TOO_SMALL; s++) {
