@@ -39,6 +39,7 @@ mod lint;
 mod observer;
 pub mod reports;
 mod storage;
+mod tables;
 pub mod types;
 
 use core::ffi::c_char;

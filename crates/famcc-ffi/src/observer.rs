@@ -5,7 +5,7 @@
 
 use core::ptr;
 
-use crate::convert::{from_c, DISCRETIZATIONS};
+use crate::tables::{from_c, DISCRETIZATIONS};
 use crate::types::*;
 use famcc_core::{ConfigError, ExtendedHighGain, Real};
 
@@ -44,7 +44,7 @@ pub(crate) fn to_c<T: Real, const N: usize>(o: &ExtendedHighGain<T, N>) -> Famcc
         mu: o.mu,
         a,
         b0: o.b0,
-        discretization: crate::convert::to_c(&DISCRETIZATIONS, o.discretization),
+        discretization: crate::tables::to_c(&DISCRETIZATIONS, o.discretization),
         has_cancellation_limit: 0,
         cancellation_limit: T::zero(),
     }

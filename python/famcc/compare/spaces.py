@@ -113,7 +113,12 @@ def famcc_candidates(
     flexible-joint``, seeds 1-3, 42 cells): famcc's IAE over the best peer's,
     geometric mean 1.67, against 2.62 with the absolute ``k_u`` and ``mu`` of
     orders 1-2 (example 3: 1.23 against 1.70; flexible joint 2.27 against
-    4.04); ``u_ratio`` to 100 or 300 gave 1.99 and 1.83.
+    4.04); ``u_ratio`` to 100 or 300 gave 1.99 and 1.83. Tried at order 2
+    (``--plant example-1 example-2 dc-motor pendulum quadrotor-altitude
+    two-link-arm``, seeds 1-3, 126 cells; these ranges: 1.22): the linear
+    family 1.19 (example 2 1.50 -> 1.06, DC motor 1.61 -> 1.09, but quadrotor
+    1.00 -> 1.47, two-link arm 1.14 -> 1.38: kept out); ``FiniteTime`` with
+    ``u_ratio`` and ``obs_ratio`` for ``k_u`` and ``mu``: 1.54.
 
     ``Space.slowed`` gives the noise check's variant (compare/tuning.py): the
     observer :data:`SLOWER_OBSERVER` times slower (``mu`` x 4, ``obs_ratio`` / 4).
