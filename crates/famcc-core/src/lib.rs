@@ -25,6 +25,7 @@
 //! | [`differentiator`] | eq. (34) (HGD) |
 //! | [`config`] | the parameters and their rules, the defaults |
 //! | [`controller`] | eqs. (29) uT, (32) WuT, (35) uOF |
+//! | [`direction`] | beyond the paper's Assumption 1 (`G > 0`): the sign of `G` |
 //! | [`bounds`] | Corollaries 1-3 |
 //!
 //! ```
@@ -84,6 +85,7 @@ pub mod constraint;
 pub mod controller;
 pub mod design;
 pub mod differentiator;
+pub mod direction;
 pub mod envelope;
 pub mod error;
 pub mod feedback;
@@ -105,6 +107,7 @@ pub use controller::{
 #[cfg(feature = "observer")]
 pub use differentiator::{DiscreteExtended, ExtendedHighGain};
 pub use differentiator::{DiscreteHgd, Discretization, HighGain};
+pub use direction::Direction;
 pub use envelope::{Envelope, Latch};
 pub use error::{ConfigError, StepError};
 pub use feedback::Feedback;

@@ -130,6 +130,29 @@ typedef uint32_t FamccConstraintKind;
 #endif // __cplusplus
 
 /**
+ * The control direction, the sign of the plant's input gain `G`
+ * (`FamccConfig.direction`; famcc-core's `Direction`).
+ */
+enum FamccDirection
+#ifdef __cplusplus
+  : uint32_t
+#endif // __cplusplus
+ {
+  /**
+   * `G > 0`, the paper's: a larger input raises the output.
+   */
+  FAMCC_DIRECTION_POSITIVE = 0,
+  /**
+   * `G < 0`: the law's sign is reversed (`v = +k_u Gamma(xi)`); the
+   * limits and inputs stay in the actuator's units.
+   */
+  FAMCC_DIRECTION_NEGATIVE = 1,
+};
+#ifndef __cplusplus
+typedef uint32_t FamccDirection;
+#endif // __cplusplus
+
+/**
  * Differentiator discretizations (`FamccDifferentiator.discretization`).
  */
 enum FamccDiscretization
@@ -737,10 +760,15 @@ typedef struct FamccConfig_f32 {
   float initial_output;
   /**
    * The extended observer and its bounded cancellation (beyond the paper;
-   * off by default). The last member, so the members before it keep
-   * their offsets.
+   * off by default).
    */
   struct FamccObserver_f32 observer;
+  /**
+   * The control direction, a `FAMCC_DIRECTION_*` value (default
+   * `POSITIVE`, the paper's `G > 0`); an observer's `b0` must have its
+   * sign. The last member, so the members before it keep their offsets.
+   */
+  uint32_t direction;
 } FamccConfig_f32;
 
 /**
@@ -1106,10 +1134,15 @@ typedef struct FamccConfig_f64 {
   double initial_output;
   /**
    * The extended observer and its bounded cancellation (beyond the paper;
-   * off by default). The last member, so the members before it keep
-   * their offsets.
+   * off by default).
    */
   struct FamccObserver_f64 observer;
+  /**
+   * The control direction, a `FAMCC_DIRECTION_*` value (default
+   * `POSITIVE`, the paper's `G > 0`); an observer's `b0` must have its
+   * sign. The last member, so the members before it keep their offsets.
+   */
+  uint32_t direction;
 } FamccConfig_f64;
 
 /**

@@ -9,8 +9,8 @@ pub(crate) use crate::tables::*;
 use crate::types::*;
 use famcc_core::config::{DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use famcc_core::{
-    Config, ConfigBuilder, ConfigError, Constraint, Diagnostics, DiscreteHgd, Feedback, Gamma, HighGain,
-    Latch, Real, Skew, SkewKind, StepError, Transition,
+    Config, ConfigBuilder, ConfigError, Constraint, Diagnostics, Direction, DiscreteHgd, Feedback, Gamma,
+    HighGain, Latch, Real, Skew, SkewKind, StepError, Transition,
 };
 
 pub(crate) fn status_of(e: StepError) -> FamccStatus {
@@ -224,6 +224,12 @@ fn to_builder<T: Real, const N: usize>(c: &FamccConfig<T>) -> Result<ConfigBuild
             "latch",
             "must be a FAMCC_LATCH_* value",
         )?)
+        .direction(from_c(
+            &DIRECTIONS,
+            c.direction,
+            "direction",
+            "must be a FAMCC_DIRECTION_* value",
+        )?)
         .differentiator(differentiator)
         .initial_derivatives((c.has_initial_derivatives != 0).then(|| first_n(&c.initial_derivatives)))
         .estimate_limits((c.has_estimate_limits != 0).then(|| first_n(&c.estimate_limits)))
@@ -285,6 +291,7 @@ pub(crate) fn defaults<T: Real>() -> FamccConfig<T> {
         has_initial_output: 0,
         initial_output: z,
         observer: FamccObserver::default(),
+        direction: to_c(&DIRECTIONS, Direction::default()),
     }
 }
 

@@ -111,6 +111,18 @@ pub enum FamccLatch {
     Authors = 1,
 }
 
+/// The control direction, the sign of the plant's input gain `G`
+/// (`FamccConfig.direction`; famcc-core's `Direction`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamccDirection {
+    /// `G > 0`, the paper's: a larger input raises the output.
+    Positive = 0,
+    /// `G < 0`: the law's sign is reversed (`v = +k_u Gamma(xi)`); the
+    /// limits and inputs stay in the actuator's units.
+    Negative = 1,
+}
+
 /// Differentiator discretizations (`FamccDifferentiator.discretization`).
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,7 +2,7 @@
 //! enumeration values, and the lookups both ways.
 
 use crate::types::*;
-use famcc_core::{ConfigError, Discretization, Gamma, Latch, Transition};
+use famcc_core::{ConfigError, Direction, Discretization, Gamma, Latch, Transition};
 
 /// A table of `FAMCC_*` values and the core's enumeration values.
 pub(crate) type Table<E> = [(u32, E)];
@@ -16,6 +16,10 @@ pub(crate) const TRANSITIONS: [(u32, Transition); 4] = [
 pub(crate) const GAMMAS: [(u32, Gamma); 2] = [
     (FamccGamma::Log as u32, Gamma::Log),
     (FamccGamma::Rational as u32, Gamma::Rational),
+];
+pub(crate) const DIRECTIONS: [(u32, Direction); 2] = [
+    (FamccDirection::Positive as u32, Direction::Positive),
+    (FamccDirection::Negative as u32, Direction::Negative),
 ];
 pub(crate) const LATCHES: [(u32, Latch); 2] = [
     (FamccLatch::Paper as u32, Latch::Paper),

@@ -62,6 +62,7 @@ pub(super) fn c_config<T: Real, const N: usize>(cfg: &Config<T, N>) -> FamccConf
     if let Some((lo, hi)) = cfg.output_limits() {
         (c.has_output_limits, c.output_limits) = (1, [lo, hi]);
     }
+    c.direction = convert::to_c(&convert::DIRECTIONS, cfg.direction());
     if let Some(o) = cfg.observer() {
         c.observer = observer::to_c(o);
         c.observer.has_cancellation_limit = 1;

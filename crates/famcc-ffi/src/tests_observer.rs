@@ -13,7 +13,7 @@ use super::tests_discretized::{o2_f32, o3_f64};
 use super::*;
 use core::ffi::CStr;
 use core::mem::MaybeUninit;
-use famcc_core::{Config, Controller, Discretization, ExtendedHighGain, Real};
+use famcc_core::{Config, Controller, Direction, Discretization, ExtendedHighGain, Real};
 use famcc_paper::rk4::{rk4_with, Instant};
 
 /// `cfg` with the binomial observer (`mu`, `b0`) in its differentiator's
@@ -28,6 +28,7 @@ fn observed<T: Real, const N: usize>(
     let f = T::from_f64;
     cfg.to_builder()
         .differentiator(None)
+        .direction(Direction::of(b0).unwrap_or_default())
         .observer(Some(ExtendedHighGain::binomial(f(mu), f(b0))))
         .output_limits(Some((f(-limit), f(limit))))
         .cancellation_limit(Some(f(delta)))

@@ -130,3 +130,51 @@ fn lint_through_the_c_abi() {
     let st = unsafe { famcc_o3_f64_lint(storage.as_ptr(), core::ptr::null_mut(), 0, &mut count) };
     assert_eq!((st, count), (FamccStatus::Ok, 0));
 }
+
+/// The name of the parameter in an init's error (empty when it succeeded).
+fn init_error(cfg: &FamccConfigF64) -> std::vec::Vec<u8> {
+    let mut storage = MaybeUninit::<FamccO3F64>::uninit();
+    let mut err = MaybeUninit::<FamccError>::zeroed();
+    let st = unsafe { famcc_o3_f64_init(storage.as_mut_ptr(), cfg, err.as_mut_ptr()) };
+    if st == FamccStatus::Ok {
+        return std::vec::Vec::new();
+    }
+    let err = unsafe { err.assume_init() };
+    err.parameter
+        .iter()
+        .take_while(|c| **c != 0)
+        .map(|c| *c as u8)
+        .collect()
+}
+
+#[test]
+fn a_negative_direction_steps_as_the_core() {
+    let mut cfg = c_config();
+    cfg.direction = FamccDirection::Negative as u32;
+    let want = core_config()
+        .to_builder()
+        .direction(famcc_core::Direction::Negative)
+        .build()
+        .unwrap();
+    assert_eq!(convert::to_config::<f64, 3>(&cfg).unwrap(), want);
+    let mut storage = MaybeUninit::<FamccO3F64>::uninit();
+    let st = unsafe { famcc_o3_f64_init(storage.as_mut_ptr(), &cfg, core::ptr::null_mut()) };
+    assert_eq!(st, FamccStatus::Ok);
+    let (mut core, mut positive) = (Controller::new(want), Controller::new(core_config()));
+    let mut v = 0.0;
+    let mut opposite = 0;
+    for k in 0..300 {
+        let e = 0.8 * (k as f64 * 0.01).cos();
+        let st = unsafe { famcc_o3_f64_step(storage.as_mut_ptr(), e, &mut v) };
+        assert_eq!(st, FamccStatus::Ok);
+        assert_eq!(v.to_bits(), core.step(e).unwrap().to_bits());
+        opposite += usize::from(v * positive.step(e).unwrap() < 0.0);
+    }
+    assert!(opposite > 250, "{opposite} of 300 outputs of the opposite sign");
+    assert_eq!(
+        convert::defaults::<f64>().direction,
+        FamccDirection::Positive as u32
+    );
+    cfg.direction = 2;
+    assert_eq!(init_error(&cfg), b"direction");
+}

@@ -247,5 +247,6 @@ pub(crate) fn c_variant<T: Real>(v: &Case, order: usize) -> FamccConfig<T> {
         has_initial_output: 0,
         initial_output: T::zero(),
         observer: FamccObserver::default(),
+        direction: FamccDirection::Positive as u32,
     }
 }

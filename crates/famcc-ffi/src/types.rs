@@ -242,9 +242,12 @@ pub struct FamccConfig<T: Copy> {
     /// The output the first step starts from.
     pub initial_output: T,
     /// The extended observer and its bounded cancellation (beyond the paper;
-    /// off by default). The last member, so the members before it keep
-    /// their offsets.
+    /// off by default).
     pub observer: FamccObserver<T>,
+    /// The control direction, a `FAMCC_DIRECTION_*` value (default
+    /// `POSITIVE`, the paper's `G > 0`); an observer's `b0` must have its
+    /// sign. The last member, so the members before it keep their offsets.
+    pub direction: u32,
 }
 
 /// `float` configuration.

@@ -4,7 +4,9 @@
 use super::options::check_options;
 use super::{Config, DEFAULT_K0, DEFAULT_SETTLE_TIME};
 use crate::error::{positive, scale, ConfigError};
-use crate::{Constraint, DiscreteHgd, Feedback, Gamma, HighGain, Latch, Real, Skew, SkewedLaw, Transition};
+use crate::{
+    Constraint, Direction, DiscreteHgd, Feedback, Gamma, HighGain, Latch, Real, Skew, SkewedLaw, Transition,
+};
 
 /// The flexible-boundary margin a builder was given.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,6 +31,7 @@ pub struct ConfigBuilder<T, const N: usize> {
     rho_e: Margin<T>,
     transition: Transition,
     latch: Latch,
+    pub(super) direction: Direction,
     pub(super) differentiator: Option<HighGain<T, N>>,
     initial_derivatives: Option<[T; N]>,
     estimate_limits: Option<[T; N]>,
@@ -71,6 +74,7 @@ impl<T: Real, const N: usize> Config<T, N> {
             rho_e: Margin::Default,
             transition: Transition::default(),
             latch: Latch::default(),
+            direction: Direction::Positive,
             differentiator: None,
             initial_derivatives: None,
             estimate_limits: None,
@@ -103,6 +107,7 @@ impl<T: Real, const N: usize> Config<T, N> {
             rho_e: Margin::Given(self.rho_e),
             transition: self.transition,
             latch: self.latch,
+            direction: self.direction,
             differentiator: self.differentiator,
             initial_derivatives: self.initial_derivatives,
             estimate_limits: self.estimate_limits,
@@ -171,6 +176,13 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
     /// The latch of the envelopes' initial widths (default the paper's).
     pub fn latch(mut self, latch: Latch) -> Self {
         self.latch = latch;
+        self
+    }
+
+    /// The control direction, the sign of the plant's input gain `G`
+    /// (default [`Direction::Positive`], the paper's `G > 0`; src/direction.rs).
+    pub fn direction(mut self, direction: Direction) -> Self {
+        self.direction = direction;
         self
     }
 
@@ -348,6 +360,7 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
             rho_e,
             transition: self.transition,
             latch: self.latch,
+            direction: self.direction,
             differentiator: self.differentiator,
             hgd: hgd.map(Into::into),
             initial_derivatives: self.initial_derivatives,

@@ -44,7 +44,7 @@ pub use options::check_estimate_limits;
 
 use crate::differentiator::{DiscreteHgd, Recursion};
 use crate::error::ConfigError;
-use crate::{Constraint, Gamma, HighGain, Latch, Real, SkewedLaw, Transition};
+use crate::{Constraint, Direction, Gamma, HighGain, Latch, Real, SkewedLaw, Transition};
 
 /// Default initial-width factor `k0` (eqs. (21)-(22); every example of the paper).
 pub const DEFAULT_K0: f64 = 2.0;
@@ -98,6 +98,7 @@ pub struct Config<T, const N: usize> {
     rho_e: Option<T>,
     transition: Transition,
     latch: Latch,
+    direction: Direction,
     differentiator: Option<HighGain<T, N>>,
     /// The differentiator discretized for `dt`, stored by columns.
     hgd: Option<Recursion<T, N>>,
@@ -167,6 +168,12 @@ impl<T: Real, const N: usize> Config<T, N> {
     /// How the envelopes' initial widths are latched.
     pub fn latch(&self) -> Latch {
         self.latch
+    }
+
+    /// The control direction, the sign of the plant's input gain (default
+    /// [`Direction::Positive`], the paper's).
+    pub fn direction(&self) -> Direction {
+        self.direction
     }
 
     /// The high-gain differentiator (output feedback, eq. (34)); `None` for

@@ -78,6 +78,13 @@ impl<T: Real, const N: usize> ConfigBuilder<T, N> {
                 "must be None with an observer: the observer's estimates replace it",
             ));
         }
+        if crate::Direction::of(spec.b0).is_some_and(|d| d != self.direction) {
+            return Err(ConfigError::new(
+                "b0",
+                "must have the sign of the control direction: a negative b0 needs direction \
+                 Negative, a positive one Positive (both are the sign of the plant's input gain)",
+            ));
+        }
         if self.integral {
             return Err(ConfigError::new(
                 "integral",

@@ -214,7 +214,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
         } else {
             self.cancellation(lumped)
         };
-        let v = -c.k_u() * c.gamma().eval(eval.xi) - cancel;
+        let v = -c.direction().apply(c.k_u()) * c.gamma().eval(eval.xi) - cancel;
         let env = &self.state.envelopes;
         let latched = !first || (width_in_range(env.x.rho0) && width_in_range(env.y.rho0));
         let (mut next, filtered) = self.next_estimate::<UNLIMITED>(first, plan, e);
@@ -254,7 +254,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
                 crate::Constraint::Lateral { eps } => (eval.nominal.0, *eps),
                 crate::Constraint::Oblique { eps_x, .. } => (eval.nominal.0, *eps_x),
             };
-            integrating = limited.integrates(e, eval.xi_nominal.abs() * width <= eps);
+            integrating = limited.integrates(c.direction().apply(e), eval.xi_nominal.abs() * width <= eps);
             let i_next = if integrating { i + dt * e } else { i };
             if !in_range(&[i_next]) {
                 if let Some(envelopes) = unlatched {

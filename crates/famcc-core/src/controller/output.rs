@@ -71,13 +71,10 @@ impl<T: Real> Limits<T> {
                 lo = lo.max(a);
             }
         }
-        let beyond = if v > hi {
-            1
-        } else if v < lo {
-            -1
-        } else {
-            0
-        };
+        // Above and below at once (an applied input short of the rate
+        // window: `hi < lo`) says nothing about the side: 0, so that the
+        // mirrored limits give the mirrored answer (src/direction.rs).
+        let beyond = i8::from(v > hi) - i8::from(v < lo);
         Limited {
             u,
             beyond,
@@ -176,6 +173,18 @@ mod tests {
         l.applied = Some(3.0);
         let high = l.apply(4.0);
         assert!(!high.integrates(-1.0, true) && high.integrates(1.0, true));
+    }
+
+    #[test]
+    fn an_applied_input_short_of_the_rate_window_names_no_side() {
+        // window [p - 0.5, p + 0.5] = [1.5, 2.5], applied 1.0: hi = 1.0 < lo = 1.5
+        let mut l = limits(None, Some(5.0), Some(2.0));
+        l.applied = Some(1.0);
+        assert_eq!(l.apply(1.2).beyond, 0); // above hi and below lo at once
+        assert_eq!(l.apply(3.0).beyond, 1);
+        assert_eq!(l.apply(0.5).beyond, -1);
+        let sat = l.apply(1.2);
+        assert!(sat.integrates(1.0, true) && sat.integrates(-1.0, true));
     }
 
     #[test]

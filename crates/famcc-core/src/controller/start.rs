@@ -1,7 +1,8 @@
 //! The bumpless start (docs/design.md §3.8): the first step's output equals
 //! a given `u0` when that is feasible.
 //!
-//! The law gives `v_0 = -k_u Gamma(xi_0)`, so the first step needs `xi_0 =
+//! The law gives `v_0 = -k_u Gamma(xi_0)` (`+k_u` for a negative direction,
+//! src/direction.rs: read `k_u` as `sign(G) k_u` below), so the first step needs `xi_0 =
 //! xi* = Gamma^-1(-u0 / k_u)`.
 //!
 //! - With integral action the state is free in one coordinate: the
@@ -37,7 +38,7 @@ impl<T: Real, const N: usize> Controller<T, N> {
     /// `xi*` for the configured initial output, at most `limit` in magnitude.
     fn target_xi(&self, u0: T, limit: T) -> T {
         let c = &self.config;
-        let xi = c.gamma().inverse(-u0 / c.k_u());
+        let xi = c.gamma().inverse(-u0 / c.direction().apply(c.k_u()));
         xi.max(-limit).min(limit)
     }
 

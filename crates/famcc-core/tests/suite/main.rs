@@ -12,6 +12,7 @@ mod closed_loop_outcomes;
 mod closed_loop_random;
 mod design;
 mod differentiator;
+mod direction;
 mod estimate_saturation;
 #[cfg(feature = "observer")]
 mod extended;

@@ -6,8 +6,8 @@
 //! survives a snapshot; the output limits bound the total command.
 
 use famcc_core::{
-    Config, ConfigError, Constraint, Controller, Discretization, ExtendedHighGain, Feedback, HighGain,
-    StepError,
+    Config, ConfigError, Constraint, Controller, Direction, Discretization, ExtendedHighGain, Feedback,
+    HighGain, StepError,
 };
 
 const DT: f64 = 1e-3;
@@ -47,6 +47,7 @@ fn law(differentiator: Option<HighGain<f64, 2>>) -> Config<f64, 2> {
 fn observed(obs: ExtendedHighGain<f64, 2>, delta: f64) -> Result<Controller<f64, 2>, ConfigError> {
     let cfg = law(None)
         .to_builder()
+        .direction(Direction::of(obs.b0).unwrap_or_default())
         .observer(Some(obs))
         .cancellation_limit(Some(delta))
         .build()?;

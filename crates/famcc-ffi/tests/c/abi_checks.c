@@ -121,9 +121,31 @@ int main(void)
     }
     CHECK(famcc_o2_f32_diagnostics(&direct, &d) == FAMCC_STATUS_OK);
     CHECK(d.lumped != 0.0f && d.cancellation != 0.0f && fabsf(d.cancellation) <= 8.0f); /* delta: half the range */
+    ocfg.observer.b0 = -2.0f; /* a negative gain needs the negative direction */
+    CHECK(famcc_o2_f32_init(&direct, &ocfg, &err) == FAMCC_STATUS_INVALID_CONFIG);
+    CHECK(strcmp(err.parameter, "b0") == 0);
+    ocfg.direction = FAMCC_DIRECTION_NEGATIVE;
+    CHECK(famcc_o2_f32_init(&direct, &ocfg, &err) == FAMCC_STATUS_OK);
     ocfg.observer.b0 = 0.0f;
     CHECK(famcc_o2_f32_init(&direct, &ocfg, &err) == FAMCC_STATUS_INVALID_CONFIG);
     CHECK(strcmp(err.parameter, "b0") == 0);
+
+    /* the control direction: the default is the paper's; a negative one mirrors the output */
+    FamccConfigF32 neg = cfg;
+    CHECK(neg.direction == FAMCC_DIRECTION_POSITIVE);
+    neg.direction = FAMCC_DIRECTION_NEGATIVE;
+    FamccO2F32 pos_c, neg_c;
+    CHECK(famcc_o2_f32_init(&pos_c, &cfg, &err) == FAMCC_STATUS_OK);
+    CHECK(famcc_o2_f32_init(&neg_c, &neg, &err) == FAMCC_STATUS_OK);
+    for (int k = 0; k < 50; k++) {
+        float a = 0.0f, b = 0.0f, e = 0.3f * cosf(0.1f * (float)k);
+        CHECK(famcc_o2_f32_step(&pos_c, e, &a) == FAMCC_STATUS_OK);
+        CHECK(famcc_o2_f32_step(&neg_c, e, &b) == FAMCC_STATUS_OK);
+        CHECK(a == -b);
+    }
+    neg.direction = 2;
+    CHECK(famcc_o2_f32_init(&neg_c, &neg, &err) == FAMCC_STATUS_INVALID_CONFIG);
+    CHECK(strcmp(err.parameter, "direction") == 0);
 
     /* every status has a text; OVERFLOW says the sample was consumed */
     for (uint32_t s = 0; s <= FAMCC_STATUS_STORAGE_TOO_SMALL; s++) {
