@@ -1051,6 +1051,14 @@ class Controller:
         The bound ``delta > 0`` of the observer's cancellation, input units.
         None: half the range of ``output_limits`` (``U`` for ``(-U, U)``);
         required with an observer and no finite ``output_limits``.
+    direction : {'positive', 'negative'}, default 'positive'
+        The control direction, the sign of the plant's input gain ``G`` in
+        ``y^(n) = F + G u`` (beyond the paper, which assumes ``G > 0``): with
+        'negative' the law's sign is reversed, ``v = +k_u Gamma(xi)``, for a
+        plant whose output falls when its input rises (a cooler, a magnetic
+        levitation, a reversed actuator). Limits, ``initial_output`` and the
+        applied input stay in the actuator's units; an observer's ``b0`` must
+        have the same sign.
 
     Raises
     ------
@@ -1123,6 +1131,7 @@ class Controller:
         initial_output: float | None = None,
         observer: Observer | None = None,
         cancellation_limit: float | None = None,
+        direction: Literal["positive", "negative"] = "positive",
     ) -> Controller: ...
     @property
     def dt(self) -> float:
@@ -1334,6 +1343,9 @@ class Controller:
         output_limits: tuple[float, float] | None = ...,
         rate_limit: float | None = ...,
         initial_output: float | None = ...,
+        observer: Observer | None = ...,
+        cancellation_limit: float | None = ...,
+        direction: Literal["positive", "negative"] = ...,
     ) -> Controller:
         """A fresh controller with this configuration and the named fields changed.
 
@@ -1351,7 +1363,8 @@ class Controller:
             meanings: ``dt``, ``feedback``, ``skew``, ``eps``, ``settle_time``,
             ``k0``, ``k_u``, ``gamma``, ``rho_e``, ``differentiator``, ``latch``,
             ``transition``, ``initial_derivatives``, ``dtype``, ``output_limits``,
-            ``rate_limit``, ``initial_output``. Not ``order``, ``constraint`` or
+            ``rate_limit``, ``initial_output``, ``observer``, ``cancellation_limit``,
+            ``direction``. Not ``order``, ``constraint`` or
             ``integral``, which set the shape of the configuration (build a new
             controller for those). ``rho_e`` keeps the margin in effect (as
             ``config()`` shows it) unless given; ``rho_e='auto'`` derives it
@@ -1459,6 +1472,9 @@ class ControllerSpec:
         output_limits: tuple[float, float] | None = ...,
         rate_limit: float | None = ...,
         initial_output: float | None = ...,
+        observer: Observer | None = ...,
+        cancellation_limit: float | None = ...,
+        direction: Literal["positive", "negative"] = ...,
     ) -> ControllerSpec:
         """This configuration with the named fields changed.
 

@@ -6,7 +6,7 @@
 use crate::differentiator::HighGain;
 use crate::errors::{config_err_got, ConfigFault};
 use crate::laws::Law;
-use crate::names::{ConstraintName, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
+use crate::names::{ConstraintName, CONSTRAINT, DIRECTION, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::observer::Observer;
 use crate::skews::SkewSpec;
 use crate::spec::{RhoE, Spec};
@@ -50,6 +50,7 @@ pub struct Args<'a, 'py> {
     pub differentiator: Option<DiffArg<'py>>,
     pub latch: &'a str,
     pub transition: &'a str,
+    pub direction: &'a str,
     pub initial_derivatives: Option<Vec<f64>>,
     pub dtype: &'a str,
     pub integral: bool,
@@ -227,6 +228,7 @@ impl Args<'_, '_> {
             rho_e,
             latch: LATCH.parse(self.latch, "latch")?,
             transition: TRANSITION.parse(self.transition, "transition")?,
+            direction: DIRECTION.parse(self.direction, "direction")?,
             differentiator,
             initial_derivatives: self.initial_derivatives,
             dtype: DTYPE.parse(self.dtype, "dtype")?,

@@ -7,7 +7,7 @@ use crate::diagnostics::Diagnostics;
 use crate::dispatch::Core;
 use crate::errors::{kind, step_err, ConfigFault, StepFault};
 use crate::module::module_function;
-use crate::names::{CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
+use crate::names::{CONSTRAINT, DIRECTION, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::number::{Int, Num, Text};
 use crate::observer::Observer;
 use crate::spec::ControllerSpec;
@@ -37,14 +37,15 @@ impl PyController {
         rho_e = Some(RhoArg::Name(String::from(AUTO))), differentiator = Some(DiffArg::Name(String::from(AUTO))),
         latch = text(LATCH.default_name()), transition = text(TRANSITION.default_name()), initial_derivatives = None,
         dtype = text(DTYPE.default_name()), integral = false, output_limits = None, rate_limit = None,
-        initial_output = None, observer = None, cancellation_limit = None),
+        initial_output = None, observer = None, cancellation_limit = None, direction = text(DIRECTION.default_name())),
         // The defaults above are famcc-core's; pyo3 shows only literal ones, so
         // the Python signature spells them out (tests/test_docs.py checks that
         // each equals the default in effect).
         text_signature = "(order, dt, feedback=None, *, skew=None, constraint='longitudinal', eps, \
             settle_time=1.0, k0=2.0, k_u, gamma='log', rho_e='auto', differentiator='auto', latch='paper', \
             transition='exponential', initial_derivatives=None, dtype='float64', integral=False, \
-            output_limits=None, rate_limit=None, initial_output=None, observer=None, cancellation_limit=None)")]
+            output_limits=None, rate_limit=None, initial_output=None, observer=None, cancellation_limit=None, \
+            direction='positive')")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         order: Int,
@@ -69,6 +70,7 @@ impl PyController {
         initial_output: Option<Num>,
         observer: Option<Bound<'_, Observer>>,
         cancellation_limit: Option<Num>,
+        direction: Text,
         py: Python<'_>,
     ) -> PyResult<Self> {
         // Numbers are never bools, and a wrong type names its argument
@@ -96,6 +98,7 @@ impl PyController {
             initial_output: initial_output.map(|u| u.0),
             observer: observer.map(|o| o.get().clone()),
             cancellation_limit: cancellation_limit.map(|c| c.0),
+            direction: &direction.0,
         }
         .parse()?;
         Self::from_spec_warned(py, spec)

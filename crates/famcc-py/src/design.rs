@@ -57,6 +57,7 @@ fn design_spec(d: &Design, req: &Requirements) -> Spec {
         rho_e: RhoE::Given(Some(d.rho_e)),
         latch: Default::default(),
         transition: Default::default(),
+        direction: d.direction,
         differentiator,
         initial_derivatives: None,
         dtype: DType::F64,
@@ -109,6 +110,7 @@ pub fn design_rules<'py>(
     let out = PyDict::new(py);
     out.set_item("law_order", d.law_order)?;
     out.set_item("integral", d.integral)?;
+    out.set_item("direction", crate::names::DIRECTION.name(d.direction))?;
     out.set_item("mu", d.mu)?;
     out.set_item("a", d.a.get(..order).unwrap_or(&[]).to_vec())?;
     out.set_item(

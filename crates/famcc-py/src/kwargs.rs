@@ -3,9 +3,9 @@
 
 use crate::controller::PyController;
 use crate::errors::ConfigFault;
-use crate::names::{constraint_name, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
+use crate::names::{constraint_name, CONSTRAINT, DIRECTION, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::spec::{RhoE, Spec};
-use famcc_core::Constraint;
+use famcc_core::{Constraint, Direction};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -73,6 +73,9 @@ impl Spec {
         }
         if let Some(c) = self.cancellation_limit {
             d.set_item("cancellation_limit", c)?;
+        }
+        if self.direction != Direction::Positive {
+            d.set_item("direction", DIRECTION.name(self.direction))?;
         }
         Ok(d)
     }

@@ -3,7 +3,7 @@
 //! pickling). A default argument is the name of the core's `Default`.
 
 use crate::errors::ConfigFault;
-use famcc_core::{Discretization, Gamma, Latch, Transition};
+use famcc_core::{Direction, Discretization, Gamma, Latch, Transition};
 use pyo3::PyResult;
 
 /// The names of an enumeration's values.
@@ -50,6 +50,13 @@ pub const GAMMA: Names<Gamma> = Names {
 
 pub const LATCH: Names<Latch> = Names {
     table: &[("paper", Latch::Paper), ("authors", Latch::Authors)],
+};
+
+pub const DIRECTION: Names<Direction> = Names {
+    table: &[
+        ("positive", Direction::Positive),
+        ("negative", Direction::Negative),
+    ],
 };
 
 pub const TRANSITION: Names<Transition> = Names {

@@ -9,7 +9,7 @@ use crate::args::{
     check_initial_derivatives, parse_constraint, parse_differentiator, parse_laws, parse_rho_e, parse_skews,
     Args, DiffArg, RhoArg, AUTO,
 };
-use crate::names::{constraint_name, CONSTRAINT, DTYPE, GAMMA, LATCH, TRANSITION};
+use crate::names::{constraint_name, CONSTRAINT, DIRECTION, DTYPE, GAMMA, LATCH, TRANSITION};
 use crate::number::{Int, Num, Text};
 use crate::observer::Observer;
 use crate::spec::Spec;
@@ -109,6 +109,7 @@ impl Spec {
                 self.observer = arg::<Option<Bound<'_, Observer>>>(v, key)?.map(|o| o.get().clone())
             }
             "cancellation_limit" => self.cancellation_limit = opt_num(v, key)?,
+            "direction" => self.direction = DIRECTION.parse(&text(v, key)?, key)?,
             k if SHAPE_KEYS.contains(&k) => {
                 return Err(PyTypeError::new_err(format!(
                     "replace() cannot change '{k}' (it sets the shape of the configuration: \
@@ -126,7 +127,7 @@ impl Spec {
 }
 
 /// The keyword arguments `spec_from_kwargs` knows.
-const KEYS: [&str; 22] = [
+const KEYS: [&str; 23] = [
     "order",
     "dt",
     "feedback",
@@ -149,6 +150,7 @@ const KEYS: [&str; 22] = [
     "initial_output",
     "observer",
     "cancellation_limit",
+    "direction",
 ];
 
 /// The spec of the constructor's keyword arguments (as `config()` gives
@@ -183,6 +185,7 @@ pub fn spec_from_kwargs(kw: &Bound<'_, PyDict>) -> PyResult<Spec> {
         or_text("transition", TRANSITION.default_name())?,
         or_text("dtype", DTYPE.default_name())?,
     );
+    let direction = or_text("direction", DIRECTION.default_name())?;
     let opt = |k: &str| -> PyResult<Option<f64>> { get(k)?.map_or(Ok(None), |v| opt_num(&v, k)) };
     Args {
         order,
@@ -215,6 +218,7 @@ pub fn spec_from_kwargs(kw: &Bound<'_, PyDict>) -> PyResult<Spec> {
             arg::<Option<Bound<'_, Observer>>>(&v, "observer").map(|o| o.map(|o| o.get().clone()))
         })?,
         cancellation_limit: opt("cancellation_limit")?,
+        direction: &direction,
     }
     .parse()
 }

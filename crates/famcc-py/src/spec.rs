@@ -8,7 +8,7 @@ use crate::names::DType;
 use crate::observer::Observer;
 use crate::orders::to_array;
 use crate::skews::SkewSpec;
-use famcc_core::{Config, ConfigError, Constraint, Gamma, Latch, Real, Transition};
+use famcc_core::{Config, ConfigError, Constraint, Direction, Gamma, Latch, Real, Transition};
 use pyo3::prelude::*;
 
 /// The flexible-boundary margin as given.
@@ -35,6 +35,8 @@ pub struct Spec {
     pub rho_e: RhoE,
     pub latch: Latch,
     pub transition: Transition,
+    /// The control direction, the sign of the plant's input gain.
+    pub direction: Direction,
     pub differentiator: Option<HighGain>,
     /// `z2..zn`.
     pub initial_derivatives: Option<Vec<f64>>,
@@ -74,6 +76,7 @@ impl Spec {
             .k0(t(self.k0))
             .gamma(self.gamma)
             .latch(self.latch)
+            .direction(self.direction)
             .transition(self.transition);
         if let RhoE::Given(r) = self.rho_e {
             b = b.rho_e(r.map(t));
@@ -136,6 +139,7 @@ impl Spec {
             rho_e: RhoE::Given(cfg.rho_e().map(f)),
             latch: cfg.latch(),
             transition: cfg.transition(),
+            direction: cfg.direction(),
             differentiator: cfg
                 .differentiator()
                 .map(|h| HighGain::from_core(h, cfg.estimate_limits(), off)),

@@ -121,6 +121,8 @@ class Design:
         }
         if p["integral"]:
             kw["integral"] = True
+        if p.get("direction", "positive") != "positive":
+            kw["direction"] = p["direction"]
         return kw
 
     def controller(self, **overrides: Any) -> Controller:
@@ -157,6 +159,11 @@ class Design:
             + (f", noise std {r['noise_std']:g}" if r["noise_std"] else "")
             + ":",
         ]
+        if p.get("direction") == "negative":
+            lines.append(
+                "- control direction: negative (gain < 0: the output falls as the input "
+                "rises), so the law's sign is reversed, v = +k_u Gamma(xi); the rules use |gain|."
+            )
         if p["integral"]:
             lines.append(
                 f"- integral action: the law of order {p['law_order']} acts on (integral of e, "
@@ -248,8 +255,11 @@ def design(
         plant knowledge the law's gain needs.
     gain : float, optional
         A bound on the input gain ``|G|`` of ``y^(n) = G u + F`` (output units
-        per ``s^n`` per input unit). It sets the loop's rate and lets the design
-        check the sampled loop; without it the design warns.
+        per ``s^n`` per input unit), with the sign of ``G``: negative for a plant
+        whose output falls as its input rises, which gives a controller with
+        ``direction='negative'`` (the rules use ``|G|``). It sets the loop's rate
+        and lets the design check the sampled loop; without it the design warns
+        and the direction is the paper's (``G > 0``).
     noise_std : float
         Standard deviation of the measurement noise on ``y``.
     integral : bool, optional

@@ -95,6 +95,9 @@ pub const MAX_CHECKS: usize = 8;
 pub struct Design {
     /// Order of the law: `n + 1` with integral action, else `n`.
     pub law_order: usize,
+    /// The control direction: the sign of the requirements' `gain`
+    /// (positive, the paper's, without one).
+    pub direction: crate::Direction,
     /// Integral action on.
     pub integral: bool,
     /// Differentiator time constant, s.

@@ -23,8 +23,10 @@ pub struct Requirements {
     /// A bound on `|F/G|`: the input that holds the error still along the
     /// reference (e.g. the voltage that holds a motor's load torque).
     pub hold_input: f64,
-    /// A bound on the input gain `|G|` of `y^(n) = G u + F`. Without it the
-    /// loop's rate cannot be set and the design warns.
+    /// A bound on the input gain `|G|` of `y^(n) = G u + F`, with the sign of
+    /// `G`: a negative gain gives the negative control direction
+    /// ([`crate::Direction`]) and the rules use `|G|`. Without it the loop's
+    /// rate cannot be set, the direction is the paper's, and the design warns.
     pub gain: Option<f64>,
     /// Standard deviation of the measurement noise on `y`.
     pub noise_std: f64,
@@ -91,8 +93,12 @@ impl Requirements {
         if !(self.hold_input.is_finite() && self.hold_input >= 0.0) {
             return Err(ConfigError::new("hold_input", "must be finite and >= 0"));
         }
-        if let Some(g) = self.gain {
-            pos(g, "gain")?;
+        if self.gain.is_some_and(|g| !(g.is_finite() && g != 0.0)) {
+            return Err(ConfigError::new(
+                "gain",
+                "must be finite and nonzero (negative when the output falls as the input rises: \
+                 the design then reverses the control direction)",
+            ));
         }
         if let Some(m) = self.max_error {
             pos(m, "max_error")?;

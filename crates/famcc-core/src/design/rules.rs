@@ -52,6 +52,12 @@ fn time_scales(d: &mut Design, req: &Requirements, ratio: f64, k_u: f64) -> Resu
 /// Computes the design (see the module documentation and docs/tuning.md).
 pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
     req.validate()?;
+    // The sign of G sets the direction; every rule below uses |G|.
+    let direction = req.gain.and_then(crate::Direction::of).unwrap_or_default();
+    let req = &Requirements {
+        gain: req.gain.map(F::abs),
+        ..*req
+    };
     let n = req.order;
     let integral = req.integral.unwrap_or(req.gain.is_some() && n < MAX_ORDER);
     let n_law = n + usize::from(integral);
@@ -73,6 +79,7 @@ pub fn design(req: &Requirements) -> Result<Design, ConfigError> {
     let k_u = super::k_u_to_hold(F::max(req.hold_input, 0.05 * u_scale));
     let mut d = Design {
         law_order: n_law,
+        direction,
         integral,
         mu: req.mu_per_dt * req.dt,
         a,

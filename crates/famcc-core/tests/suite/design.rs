@@ -183,6 +183,7 @@ fn requirements_are_validated_by_name() {
     assert_eq!(bad(|r| r.u_limits = (1.0, 1.0)), "u_limits");
     assert_eq!(bad(|r| r.hold_input = -1.0), "hold_input");
     assert_eq!(bad(|r| r.gain = Some(0.0)), "gain");
+    assert_eq!(bad(|r| r.gain = Some(f64::NAN)), "gain");
     assert_eq!(bad(|r| r.noise_std = f64::INFINITY), "noise_std");
     assert_eq!(
         bad(|r| {
@@ -476,4 +477,23 @@ fn the_noise_rule_keeps_the_input_noise_within_the_holds_headroom() {
     // The headroom never counts below 5 % of the range: a hold input 2 from
     // its limit is given the same 5 as one 5 from it.
     assert_eq!(run((-22.0, 78.0)).mu, shifted.mu);
+}
+
+/// A negative gain: the same design as `|G|`'s but for the direction.
+#[test]
+fn a_negative_gain_reverses_the_direction_only() {
+    for order in 1..=4 {
+        let mut r = req(order);
+        r.gain = Some(25.0);
+        let pos = design(&r).unwrap();
+        r.gain = Some(-25.0);
+        let neg = design(&r).unwrap();
+        assert_eq!(pos.direction, famcc_core::Direction::Positive);
+        assert_eq!(neg.direction, famcc_core::Direction::Negative);
+        let mut same = neg;
+        same.direction = pos.direction;
+        assert_eq!(format!("{same:?}"), format!("{pos:?}")); // NaN suggestions: by their text
+        r.gain = None;
+        assert_eq!(design(&r).unwrap().direction, famcc_core::Direction::Positive);
+    }
 }
