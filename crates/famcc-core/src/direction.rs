@@ -57,9 +57,4 @@ impl Direction {
             None
         }
     }
-
-    /// `+1` or `-1`.
-    pub fn sign<T: Real>(self) -> T {
-        self.apply(T::one())
-    }
 }

@@ -118,7 +118,13 @@ def famcc_candidates(
     two-link-arm``, seeds 1-3, 126 cells; these ranges: 1.22): the linear
     family 1.19 (example 2 1.50 -> 1.06, DC motor 1.61 -> 1.09, but quadrotor
     1.00 -> 1.47, two-link arm 1.14 -> 1.38: kept out); ``FiniteTime`` with
-    ``u_ratio`` and ``obs_ratio`` for ``k_u`` and ``mu``: 1.54.
+    ``u_ratio`` and ``obs_ratio`` for ``k_u`` and ``mu``: 1.54. Tried on the full
+    report (seeds 1-3, 168 cells; these ranges: 1.30): the search choosing the
+    family at order 2 (one more coordinate picking FiniteTime or Linear, the same
+    24 runs) 1.36, 1.36 with both families' defaults as its first runs (example 2
+    1.50 -> 1.24-1.39, but two-link arm 1.14 -> 1.57-1.74: half the runs per
+    family); ``obs_ratio`` from 0.5 (its best flexible-joint points sat at 2)
+    1.32 (flexible joint 2.79 -> 2.22, example 3 0.90 -> 1.24): both kept out.
 
     ``Space.slowed`` gives the noise check's variant (compare/tuning.py): the
     observer :data:`SLOWER_OBSERVER` times slower (``mu`` x 4, ``obs_ratio`` / 4).
