@@ -162,3 +162,49 @@ def test_design_with_a_negative_gain_regulates_the_plant() -> None:
     with pytest.raises(famcc.ConfigError) as info:
         famcc.design(2, 1e-3, gain=0.0, **kw)
     assert info.value.parameter == "gain" and "negative" in str(info.value)
+
+
+class Lift(famcc.plants.Plant):
+    """``y'' = -y' + G(y) u + 0.6``: a gain of either sign; ``gain_and_drift`` gives
+    ``(G, F)``."""
+
+    def __init__(self, gain: Any) -> None:
+        super().__init__(2, [0.4, 0.0], "lift")
+        self.g = gain
+
+    def drift(self, t: float, x: Any) -> float:
+        return float(-x[1] + 0.6)
+
+    def rhs(self, t: float, x: Any, u: float) -> Any:
+        return np.array([x[1], self.drift(t, x) + self.g(x) * u])
+
+    def gain_and_drift(self, t: float, x: Any) -> tuple[float, float]:
+        return self.g(x), self.drift(t, x)
+
+
+def test_tune_measures_the_control_direction() -> None:
+    kw: dict[str, Any] = {"dt": 1e-3, "u_limits": (-3.0, 3.0), "eps": 0.02, "settle_time": 3.0}
+    d = famcc.tune(Lift(lambda x: -2.0), reference=ZERO, progress=False, **kw)
+    assert d.controller().config()["direction"] == "negative"
+    res = famcc.simulate(
+        Lift(lambda x: -2.0), d.controller(), 5.0, u_limits=(-3.0, 3.0), reference=ZERO
+    )
+    late = np.asarray(res.t) >= 3.0
+    assert np.max(np.abs(np.asarray(res.z1)[late])) < 0.02
+    # a gain that changes sign over the run, and one that is zero at x0, are named
+    for g in (lambda x: 1.0 - 5.0 * x[0], lambda x: 0.0 * x[0]):
+        with pytest.raises(famcc.ConfigError) as info:
+            famcc.tune(Lift(g), reference=ZERO, progress=False, **kw)
+        assert info.value.parameter == "gain"
+
+
+def test_a_diverged_measuring_run_is_not_trusted() -> None:
+    from types import SimpleNamespace
+
+    from famcc.tuning.search import _measured
+
+    for res in (None, SimpleNamespace(diverged_at=0.731)):
+        with pytest.raises(famcc.ConfigError) as info:
+            _measured(Lift(lambda x: -2.0), res, -2.0)
+        assert info.value.parameter == "gain" and "diverged" in str(info.value)
+    assert "0.731" in str(info.value)
