@@ -185,6 +185,9 @@ mod tests {
         assert_eq!(l.apply(0.5).beyond, -1);
         let sat = l.apply(1.2);
         assert!(sat.integrates(1.0, true) && sat.integrates(-1.0, true));
+        // exactly at a limit is within it, on either side
+        let at = limits(Some((-1.0, 2.0)), None, None);
+        assert_eq!((at.apply(2.0).beyond, at.apply(-1.0).beyond), (0, 0));
     }
 
     #[test]
