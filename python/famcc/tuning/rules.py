@@ -121,7 +121,7 @@ class Design:
         }
         if p["integral"]:
             kw["integral"] = True
-        if p.get("direction", "positive") != "positive":
+        if p["direction"] != "positive":
             kw["direction"] = p["direction"]
         return kw
 
@@ -159,7 +159,7 @@ class Design:
             + (f", noise std {r['noise_std']:g}" if r["noise_std"] else "")
             + ":",
         ]
-        if p.get("direction") == "negative":
+        if p["direction"] == "negative":
             lines.append(
                 "- control direction: negative (gain < 0: the output falls as the input "
                 "rises), so the law's sign is reversed, v = +k_u Gamma(xi); the rules use |gain|."

@@ -13,9 +13,8 @@ use proptest::prelude::*;
 
 const DT: f64 = 1e-3;
 
-/// Order 2 (FiniteTime on the lateral constraint) or order 3 with integral
-/// action (Linear stages, longitudinal), with the options the flags turn on;
-/// `mirror`: the limits and the initial output reversed.
+/// Order 2: FiniteTime on the lateral constraint, with the given output
+/// limits, rate limit and initial output.
 fn builder2(limits: Option<(f64, f64)>, rate: Option<f64>, u0: Option<f64>) -> ConfigBuilder<f64, 2> {
     Config::<f64, 2>::builder(
         DT,
@@ -29,6 +28,8 @@ fn builder2(limits: Option<(f64, f64)>, rate: Option<f64>, u0: Option<f64>) -> C
     .initial_output(u0)
 }
 
+/// Order 3 with integral action: Linear stages, longitudinal, the first-order
+/// hold, with the given output limits, rate limit and initial output.
 fn builder3(limits: Option<(f64, f64)>, rate: Option<f64>, u0: Option<f64>) -> ConfigBuilder<f64, 3> {
     let a = [4.0, 4.0, 0.0];
     Config::<f64, 3>::builder(
