@@ -96,9 +96,10 @@ impl Lockstep {
                 "list" => Kind::List,
                 "array" => Kind::Array,
                 "lanes" => Kind::Lanes,
+                "step" => Kind::Step,
                 other => {
                     return Err(ConfigError::new_err(format!(
-                        "plant kind must be 'list', 'array' or 'lanes', got {other:?}"
+                        "plant kind must be 'list', 'array', 'lanes' or 'step', got {other:?}"
                     )))
                 }
             };

@@ -172,6 +172,11 @@ pub enum Kind {
     /// `u` of shape `(lanes,)` (or `(channels, lanes)`); returns a
     /// C-contiguous float64 array of shape `(states, lanes)`.
     Lanes,
+    /// A plant that advances itself (a simulator with its own integrator):
+    /// `advance(t, x, u, dt)` returns the states at `t + dt` under `u` held,
+    /// `x` and `u` laid out as for `Lanes` when there are several lanes or
+    /// channels, else as for `Array`; the loop never calls a right-hand side.
+    Step,
 }
 
 /// A plant whose right-hand side is a Python callable.
@@ -187,6 +192,9 @@ impl Callback<'_> {
     fn call(&self, t: f64, x: &[f64], u: &[f64]) -> PyResult<Bound<'_, PyAny>> {
         let py = self.f.py();
         match self.kind {
+            Kind::Step => Err(PyValueError::new_err(
+                "a plant that advances itself has no right-hand side",
+            )),
             Kind::List | Kind::Array => {
                 let xs = if self.kind == Kind::List {
                     PyList::new(py, x)?.into_any()
@@ -213,33 +221,67 @@ impl Callback<'_> {
     }
 }
 
-impl Plant for Callback<'_> {
-    type Error = PyErr;
+impl Callback<'_> {
+    /// `advance(t, x, u, dt)` of a [`Kind::Step`] plant.
+    fn call_step(&self, t: f64, dt: f64, x: &[f64], u: &[f64]) -> PyResult<Bound<'_, PyAny>> {
+        let py = self.f.py();
+        if self.lanes == 1 && self.channels == 1 {
+            let one = u.first().copied().unwrap_or(f64::NAN);
+            return self.f.call1((t, PyArray1::from_slice(py, x), one, dt));
+        }
+        let xs = PyArray1::from_slice(py, x).reshape([self.states, self.lanes])?;
+        let us = if self.channels == 1 {
+            PyArray1::from_slice(py, u).into_any()
+        } else {
+            PyArray1::from_slice(py, u)
+                .reshape([self.channels, self.lanes])?
+                .into_any()
+        };
+        self.f.call1((t, xs, us, dt))
+    }
 
-    fn rhs(&mut self, t: f64, x: &[f64], u: &[f64], dx: &mut [f64]) -> PyResult<()> {
-        let out = self.call(t, x, u)?;
-        let want = dx.len();
+    /// Copies what the plant returned into `to` (one value per state and lane).
+    fn fill(&self, out: &Bound<'_, PyAny>, to: &mut [f64], what: &str) -> PyResult<()> {
+        let want = to.len();
         let got = if let Ok(a) = out.cast::<PyArray1<f64>>() {
             let r = a.readonly();
             let s = r.as_slice()?;
-            dx.iter_mut().zip(s).for_each(|(o, v)| *o = *v);
+            to.iter_mut().zip(s).for_each(|(o, v)| *o = *v);
             s.len()
         } else if let Ok(a) = out.cast::<PyArray2<f64>>() {
             let r = a.readonly();
             let s = r.as_slice()?;
-            dx.iter_mut().zip(s).for_each(|(o, v)| *o = *v);
+            to.iter_mut().zip(s).for_each(|(o, v)| *o = *v);
             s.len()
         } else {
             let v: Vec<f64> = out.extract()?;
-            dx.iter_mut().zip(&v).for_each(|(o, x)| *o = *x);
+            to.iter_mut().zip(&v).for_each(|(o, x)| *o = *x);
             v.len()
         };
         if got != want {
             return Err(PyValueError::new_err(format!(
-                "the plant's right-hand side returned {got} values, expected {want} (one per state{})",
+                "the plant's {what} returned {got} values, expected {want} (one per state{})",
                 if self.lanes > 1 { " and lane" } else { "" }
             )));
         }
         Ok(())
+    }
+}
+
+impl Plant for Callback<'_> {
+    type Error = PyErr;
+
+    fn advance(&mut self, t: f64, dt: f64, x: &mut [f64], u: &[f64]) -> PyResult<bool> {
+        if self.kind != Kind::Step {
+            return Ok(false);
+        }
+        let out = self.call_step(t, dt, x, u)?;
+        self.fill(&out, x, "advance")?;
+        Ok(true)
+    }
+
+    fn rhs(&mut self, t: f64, x: &[f64], u: &[f64], dx: &mut [f64]) -> PyResult<()> {
+        let out = self.call(t, x, u)?;
+        self.fill(&out, dx, "right-hand side")
     }
 }

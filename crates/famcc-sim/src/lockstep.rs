@@ -303,6 +303,9 @@ impl Lockstep {
             }
         }
         let failed = (|| {
+            if plant.advance(t, self.opts.dt, &mut self.x, up)? {
+                return Ok(());
+            }
             for j in 0..self.opts.substeps {
                 let tj = t + j as f64 * h;
                 let (k1, rest) = self.scratch.split_at_mut(len);

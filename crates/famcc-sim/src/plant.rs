@@ -14,6 +14,16 @@ pub trait Plant {
     type Error;
     /// Writes `dx` at time `t` (s), states `x` and held inputs `u`.
     fn rhs(&mut self, t: f64, x: &[f64], u: &[f64], dx: &mut [f64]) -> Result<(), Self::Error>;
+
+    /// A plant that advances itself over a whole sample period (a simulator
+    /// with its own integrator, e.g. MuJoCo) overwrites `x` with the states
+    /// at `t + dt` under the inputs `u` held from `t`, and returns `true`;
+    /// the loop then does not integrate [`Plant::rhs`]. The default returns
+    /// `false`: the loop integrates `rhs` with RK4.
+    fn advance(&mut self, t: f64, dt: f64, x: &mut [f64], u: &[f64]) -> Result<bool, Self::Error> {
+        let _ = (t, dt, x, u);
+        Ok(false)
+    }
 }
 
 /// One of the paper's plants with per-lane input-gain factors and

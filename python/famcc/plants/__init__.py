@@ -21,6 +21,8 @@ module                 what it owns
 :mod:`.model`          :class:`~famcc.plants.model.Model`: a plant written once
 :mod:`.suite`          the physical suite (motor, pendulum, quadrotor, flexible joint)
 :mod:`.arm`            the two-link arm (two inputs)
+:mod:`.stepped`        plants that advance themselves: :class:`Stepped`, :class:`BlackBox`
+:mod:`.mujoco`         :class:`MuJoCo`: a MuJoCo model's actuator and joint
 :mod:`.family`         :class:`Family`: N plants of one definition
 :mod:`.catalog`        the ready-made families (:func:`family`)
 =====================  ==================================================
@@ -45,19 +47,24 @@ from famcc.plants.base import Plant
 from famcc.plants.catalog import FAMILIES, family, names
 from famcc.plants.family import Family, FamilyPlant
 from famcc.plants.model import Model, PhysicalPlant
+from famcc.plants.mujoco import MuJoCo
 from famcc.plants.paper import VARIANTS, PaperPlant, second_order, third_order
+from famcc.plants.stepped import BlackBox, Stepped
 from famcc.plants.strict import StrictFeedback
 from famcc.plants.suite import dc_motor, flexible_joint, pendulum, quadrotor_altitude, smooth_step
 
 __all__ = [
     "FAMILIES",
     "VARIANTS",
+    "BlackBox",
     "Family",
     "FamilyPlant",
     "Model",
+    "MuJoCo",
     "PaperPlant",
     "PhysicalPlant",
     "Plant",
+    "Stepped",
     "StrictFeedback",
     "TwoLinkArm",
     "dc_motor",

@@ -98,8 +98,12 @@ def _check_loop(plant: Any, controller: Any, t_end: Any, record: bool) -> tuple[
         raise ValueError(f"controller.dt must be a finite number > 0, got {dt!r}")
     dt = float(dt)
     n = getattr(plant, "order", None)
-    if not isinstance(n, (int, np.integer)) or n < 1 or not hasattr(plant, "rhs"):
-        raise ValueError("plant must have an integer order >= 1 and an rhs(t, x, u) method")
+    moves = callable(getattr(plant, "rhs", None)) or callable(getattr(plant, "advance", None))
+    if not isinstance(n, (int, np.integer)) or n < 1 or not moves:
+        raise ValueError(
+            "plant must have an integer order >= 1 and an rhs(t, x, u) method (or, for a "
+            "plant that advances itself, advance(t, x, u, dt))"
+        )
     n = int(n)
     if controller.order != n:
         raise ValueError(f"controller.order ({controller.order}) must equal the plant order ({n})")
@@ -156,8 +160,9 @@ def check_run(
     out_signal = Signal.of(output if output is not None else getattr(plant, "output", None), "y")
     in_signal = Signal.of(input if input is not None else getattr(plant, "input", None), "u")
     ctrl_repr, ctrl_config = describe_controller_of(controller)
-    if x0.shape != (n,) or not np.all(np.isfinite(x0)):
-        raise ValueError(f"plant.x0 must be {n} finite numbers, got {x0.tolist()}")
+    if x0.size < 1 or not np.all(np.isfinite(x0)):
+        # at least the output; a plant may hold more states than its order
+        raise ValueError(f"plant.x0 must be finite numbers (at least 1), got {x0.tolist()}")
     return Setup(
         dt=dt,
         order=n,

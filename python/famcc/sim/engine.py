@@ -31,11 +31,15 @@ BLOCK_VALUES = 1 << 20
 
 def plant_of(plant: Any) -> Any:
     """What the loop integrates for a scalar plant: its compiled lanes when it
-    has them (the paper's plants), else its ``rhs_fast`` on lists, else its
-    ``rhs`` on NumPy vectors."""
+    has them (the paper's plants), its ``advance(t, x, u, dt)`` when it advances
+    itself (:class:`famcc.plants.Stepped`), else its ``rhs_fast`` on lists, else
+    its ``rhs`` on NumPy vectors."""
     compiled = getattr(plant, "compiled", None)
     if callable(compiled):
         return compiled()
+    advance = getattr(plant, "advance", None)
+    if callable(advance):
+        return ("step", advance)
     fast = getattr(plant, "rhs_fast", None)
     if callable(fast):
         return ("list", fast)

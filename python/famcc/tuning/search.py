@@ -78,11 +78,17 @@ class _Lean:
 
     def __init__(self, plant: Any) -> None:
         self._plant = plant
-        self.order, self.x0 = plant.order, plant.x0
+        self.order = plant.order
         self.rhs = plant.rhs
-        fast = getattr(plant, "rhs_fast", None)
-        if fast is not None:
-            self.rhs_fast = fast
+        for name in ("rhs_fast", "advance"):
+            method = getattr(plant, name, None)
+            if callable(method):
+                setattr(self, name, method)
+
+    @property
+    def x0(self) -> Any:
+        """The plant's initial state, read afresh for every run (a black box resets)."""
+        return self._plant.x0
 
     def output_derivatives(self, t: float, x: Any) -> Any:
         raise NotImplementedError("not needed for tuning")
