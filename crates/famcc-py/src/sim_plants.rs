@@ -207,28 +207,15 @@ impl Callback<'_> {
                 }
             }
             Kind::Lanes => {
-                let xs = PyArray1::from_slice(py, x).reshape([self.states, self.lanes])?;
-                let us = if self.channels == 1 {
-                    PyArray1::from_slice(py, u).into_any()
-                } else {
-                    PyArray1::from_slice(py, u)
-                        .reshape([self.channels, self.lanes])?
-                        .into_any()
-                };
+                let (xs, us) = self.lane_args(x, u)?;
                 self.f.call1((t, xs, us))
             }
         }
     }
-}
 
-impl Callback<'_> {
-    /// `advance(t, x, u, dt)` of a [`Kind::Step`] plant.
-    fn call_step(&self, t: f64, dt: f64, x: &[f64], u: &[f64]) -> PyResult<Bound<'_, PyAny>> {
+    /// `x` as `(states, lanes)` and `u` as `(lanes,)` or `(channels, lanes)`.
+    fn lane_args<'a>(&'a self, x: &[f64], u: &[f64]) -> PyResult<(Bound<'a, PyAny>, Bound<'a, PyAny>)> {
         let py = self.f.py();
-        if self.lanes == 1 && self.channels == 1 {
-            let one = u.first().copied().unwrap_or(f64::NAN);
-            return self.f.call1((t, PyArray1::from_slice(py, x), one, dt));
-        }
         let xs = PyArray1::from_slice(py, x).reshape([self.states, self.lanes])?;
         let us = if self.channels == 1 {
             PyArray1::from_slice(py, u).into_any()
@@ -237,6 +224,17 @@ impl Callback<'_> {
                 .reshape([self.channels, self.lanes])?
                 .into_any()
         };
+        Ok((xs.into_any(), us))
+    }
+
+    /// `advance(t, x, u, dt)` of a [`Kind::Step`] plant.
+    fn call_step(&self, t: f64, dt: f64, x: &[f64], u: &[f64]) -> PyResult<Bound<'_, PyAny>> {
+        let py = self.f.py();
+        if self.lanes == 1 && self.channels == 1 {
+            let one = u.first().copied().unwrap_or(f64::NAN);
+            return self.f.call1((t, PyArray1::from_slice(py, x), one, dt));
+        }
+        let (xs, us) = self.lane_args(x, u)?;
         self.f.call1((t, xs, us, dt))
     }
 

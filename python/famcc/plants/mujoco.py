@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from famcc.plants.stepped import Stepped, check_names, lanes_of
+from famcc.plants.stepped import Stepped, lanes_of
 
 __all__ = ["MuJoCo"]
 
@@ -63,6 +63,19 @@ def _model(mj: Any, model: Any) -> Any:
 
 def _names(mj: Any, model: Any, kind: Any, count: int) -> list[str]:
     return [mj.mj_id2name(model, kind, i) or f"#{i}" for i in range(count)]
+
+
+def check_names(kind: str, given: Any, names: Sequence[str]) -> int:
+    """The index of ``given`` (a name or an index) among ``names``."""
+    if isinstance(given, str):
+        if given not in names:
+            raise ValueError(f"{kind} {given!r} is not in the model; it has {list(names)}")
+        return list(names).index(given)
+    if isinstance(given, (int, np.integer)) and not isinstance(given, bool):
+        if not 0 <= int(given) < len(names):
+            raise ValueError(f"{kind} index {given} is out of range: the model has {len(names)}")
+        return int(given)
+    raise TypeError(f"{kind} must be a name or an index, got {given!r}")
 
 
 class MuJoCo(Stepped):

@@ -28,7 +28,7 @@ Examples
 ...         return self.p
 >>> plant = famcc.plants.BlackBox(Cart(), order=2, name="cart")
 >>> ctrl = famcc.design(2, 1e-3, u_limits=(-5, 5), eps=0.02, settle_time=3.0,
-...                     hold_input=0.0, gain=1.0).controller()
+...                     hold_input=4.5, gain=1.0).controller()
 >>> res = famcc.simulate(plant, ctrl, 4.0, reference=famcc.Constant(0.0), u_limits=(-5, 5))
 >>> bool(abs(res.z[-1, 0]) < 0.02)
 True
@@ -36,7 +36,6 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -148,16 +147,3 @@ def lanes_of(x: np.ndarray, u: Any) -> tuple[np.ndarray, np.ndarray, bool]:
     xs = x[:, None] if one else x
     us = np.broadcast_to(np.asarray(u, dtype=np.float64).reshape(-1), (xs.shape[1],))
     return xs, us, one
-
-
-def check_names(kind: str, given: Any, names: Sequence[str]) -> int:
-    """The index of ``given`` (a name or an index) among ``names``."""
-    if isinstance(given, str):
-        if given not in names:
-            raise ValueError(f"{kind} {given!r} is not in the model; it has {list(names)}")
-        return list(names).index(given)
-    if isinstance(given, (int, np.integer)) and not isinstance(given, bool):
-        if not 0 <= int(given) < len(names):
-            raise ValueError(f"{kind} index {given} is out of range: the model has {len(names)}")
-        return int(given)
-    raise TypeError(f"{kind} must be a name or an index, got {given!r}")
