@@ -201,10 +201,10 @@ def test_tune_measures_the_control_direction() -> None:
 def test_a_diverged_measuring_run_is_not_trusted() -> None:
     from types import SimpleNamespace
 
-    from famcc.tuning.search import _measured
+    from famcc.tuning.measure import check_run
 
     for res in (None, SimpleNamespace(diverged_at=0.731)):
         with pytest.raises(famcc.ConfigError) as info:
-            _measured(Lift(lambda x: -2.0), res, -2.0)
+            check_run(res, -2.0)
         assert info.value.parameter == "gain" and "diverged" in str(info.value)
     assert "0.731" in str(info.value)

@@ -7,10 +7,11 @@ import warnings
 from collections.abc import Sequence
 from typing import Any
 
-from famcc import _core, sim
+from famcc import sim
 from famcc._common import DesignWarning
 from famcc.progress import Progress
 from famcc.signals import Constant, reference_table
+from famcc.tuning import measure
 from famcc.tuning.assess import assess
 from famcc.tuning.rules import Design, Finding, Trial, design
 
@@ -25,51 +26,6 @@ MARGIN_TIME, MARGIN_ERROR = 0.85, 0.7
 #: RK4 substeps per sample of the search's runs (the chosen candidate is confirmed
 #: with the simulator's default 10), and how many candidates to confirm at most.
 SEARCH_SUBSTEPS, CONFIRM = 2, 4
-
-
-def _measure_plant(plant: Any, result: Any) -> tuple[float, float]:
-    """``(G, max |F/G|)`` along a run: ``G`` the gain of largest ``|G|`` with its
-    sign (NaN without ``gain_and_drift``), ``F/G`` after the run's first half.
-    A gain that changes sign along the run is a :class:`famcc.ConfigError`: the
-    controller needs one control direction."""
-    import numpy as np
-
-    gains = []
-    for k in range(0, len(result.t), max(1, len(result.t) // 400)):
-        try:
-            g, _ = plant.gain_and_drift(float(result.t[k]), result.x[k])
-        except NotImplementedError:
-            break
-        gains.append(float(g))
-    if gains and min(gains) < 0.0 < max(gains):
-        raise _core.ConfigError(
-            f"gain: the plant's input gain G changes sign along tune's measuring run "
-            f"(from {min(gains):.4g} to {max(gains):.4g}); famcc needs one control direction "
-            "(the sign of G) over the operating range: give gain= with the sign that holds "
-            "near the reference, or narrow the range",
-            parameter="gain",
-            rule="G keeps one sign along the run",
-        )
-    negfg = result.neg_f_over_g
-    late = np.asarray(result.t) >= 0.5 * float(result.t[-1])
-    hold = float(np.nanmax(np.abs(negfg[late]))) if negfg is not None else math.nan
-    return (max(gains, key=abs) if gains else math.nan), hold
-
-
-def _measured(plant: Any, res: Any, g0: float) -> tuple[float, float]:
-    """The measuring run's ``(G, hold input)``, or a :class:`famcc.ConfigError` that
-    says why it cannot be trusted (it diverged, or its values are not finite)."""
-    if res is None or res.diverged_at is not None:
-        when = "" if res is None else f" at t = {res.diverged_at:.4g} s"
-        raise _core.ConfigError(
-            f"gain: tune's measuring run (the design for G = {g0:.4g}, the gain at x0) "
-            f"diverged{when}, so the gain and hold input it would measure are not trusted: "
-            "give gain= (with its sign) and hold_input=, or widen u_limits or lengthen "
-            "settle_time",
-            parameter="gain",
-            rule="the measuring run must not diverge",
-        )
-    return _measure_plant(plant, res)
 
 
 class _Lean:
@@ -143,14 +99,24 @@ def tune(
 ) -> Design:
     """A design that meets the requirements on ``plant``, found by simulation.
 
-    It starts from :func:`design`, measures the input gain ``G`` and the hold
-    input ``|F/G|`` on the plant (from ``plant.gain_and_drift`` along a first
-    closed-loop run, unless given, or read from a :class:`famcc.plants.PhysicalPlant`):
-    the sign of ``G`` at ``x0`` sets the control direction of that run, the
-    gain of largest ``|G|`` along it (20 % over it, with its sign) that of every
-    candidate. A gain that is zero at ``x0`` or changes sign along the run, or a
-    run that diverges, is a :class:`famcc.ConfigError` naming ``gain`` that says
-    what to give instead. It then simulates a grid of candidates (phase budget x envelope fraction x
+    It starts from :func:`design` and measures the plant by experiments
+    (:mod:`famcc.tuning.measure`), unless ``gain`` and ``hold_input`` are given
+    or a :class:`famcc.plants.PhysicalPlant` knows them:
+
+    - the input gain ``G`` at ``x0``, with its sign, from ``gain_and_drift``
+      where the plant has it and from input pulses where it does not (a plant
+      with an ``if`` in its load, a table, a simulator, a black box); it sets
+      the control direction and designs a first, measuring run;
+    - the signed gain of largest ``|G|`` along that run, and the holding input
+      at the reference in steady state: the plant's equilibrium on a constant
+      set point (Newton on its ``rhs`` or ``advance``), else the input over the
+      run's settled stretch (a second run if the first did not settle, and a
+      warning if neither did). Each is taken 20 % over the measured value.
+
+    A gain that is zero at ``x0`` or changes sign along the run, or a
+    measuring run that diverges, is a :class:`famcc.ConfigError` naming
+    ``gain`` that says what to give instead. It then simulates a grid of
+    candidates (phase budget x envelope fraction x
     differentiator speed) and keeps the feasible one with the least control
     effort (total variation of ``u``) and ripple. A candidate is feasible when
     it settles to ``eps`` within ``settle_time``, the error stays below ``eps``
@@ -161,8 +127,8 @@ def tune(
     Parameters
     ----------
     plant : famcc.plants.Plant
-        Any plant :func:`famcc.simulate` takes; ``gain_and_drift`` is needed
-        unless ``gain`` and ``hold_input`` are given.
+        Any plant :func:`famcc.simulate` takes (``rhs`` or ``advance``, a
+        :class:`famcc.plants.BlackBox`); nothing more is needed.
     dt, u_limits, eps, settle_time, noise_std
         As for :func:`design`.
     reference : optional
@@ -215,47 +181,33 @@ def tune(
             except (FloatingPointError, ValueError, OverflowError):
                 return None
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DesignWarning)
-        g = gain if gain is not None else getattr(plant, "gain", None)
-        h = (
-            hold_input
-            if hold_input is not None
-            else (plant.hold_input() if hasattr(plant, "hold_input") else None)
+    limits = (lo, hi)
+    g = gain if gain is not None else getattr(plant, "gain", None)
+    h = (
+        hold_input
+        if hold_input is not None
+        else (plant.hold_input() if hasattr(plant, "hold_input") else None)
+    )
+    hold_warning = None
+    if g is None or h is None:
+        g, h, hold_warning = measure.measure(
+            plant,
+            g,
+            h,
+            run,
+            limits,
+            dt,
+            order,
+            eps,
+            settle_time,
+            noise_std,
+            integral,
+            max_error,
+            reference,
+            horizon,
         )
-        if g is None or h is None:
-            try:
-                g0, _ = plant.gain_and_drift(0.0, np.asarray(plant.x0, dtype=float))
-                g0 = float(g0)
-            except NotImplementedError as exc:
-                raise _core.ConfigError(
-                    f"tune needs gain= and hold_input= for a plant without gain_and_drift ({exc})",
-                    parameter="gain" if g is None else "hold_input",
-                    rule="must be given for a plant without gain_and_drift",
-                ) from exc
-            if not (math.isfinite(g0) and g0 != 0.0):
-                raise _core.ConfigError(
-                    f"gain: the plant's input gain at x0 is {g0:g}, so tune cannot tell the "
-                    "control direction or the loop's rate: give gain= (with its sign)",
-                    parameter="gain",
-                    rule="G(0, x0) finite and nonzero",
-                )
-            first = design(
-                order,
-                dt,
-                u_limits=(lo, hi),
-                eps=eps,
-                settle_time=settle_time,
-                hold_input=h if h is not None else 0.0,
-                gain=g0 * 1.5,
-                noise_std=noise_std,
-                integral=integral,
-                max_error=max_error,
-            )
-            gm, hm = _measured(plant, run(first, measure=True), g0)
-            # the signed gain of largest |G| along the run, 20 % over it
-            g = g if g is not None else 1.2 * (gm if math.isfinite(gm) else g0 * 1.5)
-            h = h if h is not None else 1.2 * (hm if math.isfinite(hm) else 0.0)
+    if hold_warning:
+        warnings.warn(hold_warning, DesignWarning, stacklevel=2)
     knobs = [(b, f, m) for b in BUDGETS for f in FRACTIONS for m in MU_SAMPLES[:1]]
     bar = Progress(len(knobs) + 2 * (len(MU_SAMPLES) - 1), "famcc.tune") if progress else None
     trials: list[tuple[Trial, Design]] = []
