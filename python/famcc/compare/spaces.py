@@ -2,73 +2,20 @@
 
 from __future__ import annotations
 
-import math
-from collections.abc import Sequence
-from dataclasses import dataclass, field
 from typing import Any
-
-import numpy as np
 
 from famcc.compare.conditions import DT
 from famcc.compare.plants import Case
+from famcc.tuning.space import Space
 
 _KINDS = ("famcc", "lmcc", "pid", "adrc")
+
+__all__ = ["PAPER_K_U", "SLOWER_OBSERVER", "Space", "controllers", "famcc_candidates", "space"]
 
 
 def controllers() -> list[str]:
     """The compared controllers, famcc first."""
     return list(_KINDS)
-
-
-@dataclass(frozen=True)
-class Space:
-    """A controller's documented parameter ranges; ``params(u)`` maps the unit cube.
-
-    ``ranges`` maps each name to ``(lo, hi, log)``; ``fixed`` holds the
-    parameters that are not searched (e.g. ADRC's ``b0 = G``); ``default`` is
-    the controller's documented default setting (the paper's design for famcc,
-    the textbook pole placement for the peers), the first candidate the tuning
-    tries.
-    """
-
-    kind: str
-    ranges: dict[str, tuple[float, float, bool]]
-    fixed: dict[str, Any] = field(default_factory=dict)
-    default: dict[str, float] = field(default_factory=dict)
-    #: ``(name, factor)``: the parameter and factor that make a candidate slower
-    #: (famcc's observer: ``mu`` x 4), for the noise check (compare/tuning.py).
-    slower: tuple[str, float] | None = None
-
-    @property
-    def dims(self) -> int:
-        return len(self.ranges)
-
-    def params(self, u: Sequence[float] | np.ndarray) -> dict[str, Any]:
-        """The parameters at the point ``u`` of ``[0, 1]^dims``."""
-        out = dict(self.fixed)
-        for x, (name, (lo, hi, log)) in zip(u, self.ranges.items()):
-            x = min(max(float(x), 0.0), 1.0)
-            out[name] = lo * (hi / lo) ** x if log else lo + (hi - lo) * x
-        return out
-
-    def slowed(self, u: np.ndarray) -> np.ndarray | None:
-        """The point ``u`` with :attr:`slower` applied (clipped to its range), or
-        None when there is none or it changes nothing."""
-        if self.slower is None:
-            return None
-        name, factor = self.slower
-        p = self.params(u)
-        out = self.unit({**p, name: p[name] * factor})
-        return None if np.array_equal(out, u) else out
-
-    def unit(self, params: dict[str, float]) -> np.ndarray:
-        """The point of the unit cube of ``params`` (clipped to the ranges)."""
-        out = []
-        for name, (lo, hi, log) in self.ranges.items():
-            v = float(params[name])
-            x = math.log(v / lo) / math.log(hi / lo) if log else (v - lo) / (hi - lo)
-            out.append(min(max(x, 0.0), 1.0))
-        return np.array(out)
 
 
 #: famcc's law family with the observer, by order (``"linear"`` at the others:

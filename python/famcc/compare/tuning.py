@@ -10,6 +10,7 @@ import numpy as np
 from famcc.compare.plants import Case
 from famcc.compare.spaces import _KINDS, space
 from famcc.compare.workers import _Pool
+from famcc.tuning.space import latin_hypercube as _lhs
 
 #: Runs of famcc's own budget spent on the noise check (an observer tuned without
 #: noise picks a bandwidth that noise punishes): its best nominal candidate under
@@ -23,14 +24,6 @@ NOISE_CHECK_CONDITION = "noise 1e-3"
 def tune_budget(quick: bool) -> tuple[int, int]:
     """``(B, rounds)``: closed-loop runs per controller and plant, refinement rounds."""
     return (8, 2) if quick else (24, 3)
-
-
-def _lhs(rng: np.random.Generator, n: int, d: int) -> np.ndarray:
-    """``n`` Latin-hypercube points in ``[0, 1]^d``."""
-    out = np.empty((n, d))
-    for j in range(d):
-        out[:, j] = (rng.permutation(n) + rng.random(n)) / n
-    return out
 
 
 def _tune(
