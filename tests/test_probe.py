@@ -58,7 +58,8 @@ def test_the_pulse_gain_equals_the_exact_gain(
     g, note = probe.pulse_gain(plant, 1e-3, (-5.0, 5.0), x=state, t0=t)
     exact = plant.gain_and_drift(t, state)[0]
     assert note == ""
-    assert g == pytest.approx(exact, rel=2e-3)  # the sign as well as the size
+    # the state moves during the 16-sample pulse, so G(x) drifts: 1 % (tune adds 20 %)
+    assert g == pytest.approx(exact, rel=1e-2)  # the sign as well as the size
 
 
 def test_a_wrong_order_is_named() -> None:
@@ -134,7 +135,8 @@ def test_settled_input_needs_a_settled_run() -> None:
 
 def _tune(plant: object, **kw: object) -> famcc.Design:
     args: dict[str, object] = {"dt": 1e-3, "u_limits": (-2.0, 2.0), "eps": 0.02}
-    args.update(settle_time=2.0, t_end=4.0, progress=False, **kw)
+    args.update({"settle_time": 2.0, "t_end": 4.0, "progress": False})
+    args.update(kw)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", famcc.DesignWarning)
         return famcc.tune(plant, **args)  # type: ignore[arg-type]
@@ -158,3 +160,38 @@ def test_tune_measures_a_black_box_without_gain_or_hold_input() -> None:
     assert d.requirements["measured_gain"] == pytest.approx(measure.MARGIN * 2.0, rel=1e-3)
     # read from the settled stretch of the measuring run: the load 0.5 / G
     assert d.requirements["measured_hold_input"] == pytest.approx(measure.MARGIN * 0.25, rel=0.05)
+
+
+def test_tunes_verdict_is_the_judge_of_the_returned_controllers_own_run() -> None:
+    # one judge: famcc.tuning.assess on the run the user gets from the Design
+    for settle in (1.0, 3.0):  # one the search cannot meet, one it can
+        plant, ref = Loaded(2, [1.0, 0.0]), famcc.Constant(0.0)
+        d = _tune(plant, reference=ref, settle_time=settle, t_end=2.0 * settle + 1.0)
+        res = famcc.simulate(
+            plant, d.controller(), 2.0 * settle + 1.0, reference=ref, u_limits=(-2.0, 2.0)
+        )
+        a = famcc.tuning.assess(res, eps=0.02, settle_time=settle, u_limits=(-2.0, 2.0))
+        found = next(f for f in d.checks if f.name == "tune")
+        assert (found.level == "ok") == a.ok, (settle, found.message, a)
+
+
+def test_the_objective_orders_the_choice() -> None:
+    plant, ref = Loaded(2, [1.0, 0.0]), famcc.Constant(0.0)
+    runs = {}
+    for objective in ("accuracy", "smooth"):
+        d = _tune(plant, reference=ref, settle_time=3.0, t_end=7.0, objective=objective)
+        res = famcc.simulate(plant, d.controller(), 7.0, reference=ref, u_limits=(-2.0, 2.0))
+        a = famcc.tuning.assess(res, eps=0.02, settle_time=3.0, u_limits=(-2.0, 2.0))
+        assert a.ok, (objective, a)
+        runs[objective] = (float(np.sum(np.abs(res.z1))) * res.dt, a.effort, d)
+    # each objective's choice is at least as good as the other's by its own measure
+    assert runs["accuracy"][0] <= runs["smooth"][0] * 1.001
+    assert runs["smooth"][1] <= runs["accuracy"][1] * 1.001
+    d = runs["accuracy"][2]
+    if "observer_candidate" in d.parameters:  # the text says what was chosen
+        assert "extended observer" in str(d)
+        kw = d.controller_kwargs()
+        again = famcc.Controller(kw.pop("order"), kw.pop("dt"), **kw)
+        assert again.config() == d.controller().config()
+    with pytest.raises(ValueError, match="objective"):
+        _tune(plant, reference=ref, objective="fastest")

@@ -3,6 +3,7 @@ controllers that close the loop, every finding and every requirement can fail.""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 
@@ -237,3 +238,51 @@ def test_assessment_text_gives_the_percentages():
     b = famcc.tuning.Assessment(None, 0.5, 0.0, 0.0, 0.0, 0.0, ["never settled", "x"])
     assert str(b).startswith("settling time never,")
     assert str(b).endswith("saturated 0 %: requirement NOT met: never settled; x")
+
+
+def test_ripple_is_steady_oscillation_not_convergence() -> None:
+    # settled from 1 s of 10 s; u converges smoothly by 60 % of the range after settling,
+    # and answers a load step at 5 s: neither is ripple
+    t = np.round(np.arange(1001) * 0.01, 12)
+    z1 = np.where(t < 1.0, 1.0, 0.01)
+    smooth = 0.6 * np.exp(-(t - 1.0) / 3.0) * (t >= 1.0) + 0.3 * (t >= 5.0)
+    a = famcc.tuning.assess(
+        _hand_run(z1, smooth, dt=0.01), eps=0.1, settle_time=2.0, u_limits=(-1, 1)
+    )
+    assert a.ok and a.ripple < 0.01, a
+    # a limit cycle of 0.1 in the last fifth is ripple: peak-to-peak 0.2 of the range 2
+    cycle = 0.3 + 0.1 * np.sign(np.sin(2 * np.pi * 7.3 * t))
+    b = famcc.tuning.assess(
+        _hand_run(z1, cycle, dt=0.01), eps=0.1, settle_time=2.0, u_limits=(-1, 1)
+    )
+    assert b.ripple == pytest.approx(0.1, rel=0.05)
+    assert b.failures == [f"u ripple {100 * b.ripple:.3g} % > 5 % of the range"]
+    # the trend is removed, the oscillation about it is not: a ramp plus the cycle
+    ramp = cycle + 0.05 * t
+    c = famcc.tuning.assess(
+        _hand_run(z1, ramp, dt=0.01), eps=0.1, settle_time=2.0, u_limits=(-1, 1)
+    )
+    assert c.ripple == pytest.approx(b.ripple, rel=0.05)
+
+
+def test_assess_counts_expansions_with_headroom_after_settling_or_over_the_last_tenth() -> None:
+    def run(z1: list[float], expanded: list[bool]) -> famcc.SimResult:
+        res = _hand_run(z1, np.zeros(len(z1)))
+        return dataclasses.replace(res, expanded=np.array(expanded))
+
+    # settled from 1.0 s of 1.9 s: 10 samples after, 3 of them expanded with headroom
+    z1 = [1.0] * 10 + [0.0] * 10
+    a = famcc.tuning.assess(
+        run(z1, [True] * 10 + [False, True] * 3 + [False] * 4),
+        eps=0.1,
+        settle_time=1.5,
+        u_limits=(-1, 1),
+    )
+    assert a.expanded_unsaturated == pytest.approx(0.3)
+    assert a.failures == ["bounds expanded with headroom 30 % of the time"]
+    # never settled (2 s): only the last tenth counts, where it never expanded
+    never = famcc.tuning.assess(
+        run([1.0] * 21, [True] * 18 + [False] * 3), eps=0.1, settle_time=1.5, u_limits=(-1, 1)
+    )
+    assert never.expanded_unsaturated == 0.0
+    assert not any("headroom" in f for f in never.failures)

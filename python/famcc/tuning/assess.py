@@ -10,8 +10,12 @@ A run meets ``(eps, settle_time, u_limits)`` when
    :func:`tune` asks for margin on it);
 3. the flexible bounds never expand after ``t_s`` while the actuator has
    headroom (``v`` inside the limits): the preset accuracy was not given up;
-4. the input's ripple after ``t_s`` (peak-to-peak) is at most ``ripple_limit``
-   of the input range (5 % by default).
+4. the input's ripple, its steady oscillation, is at most ``ripple_limit`` of
+   the input range (5 % by default): the peak-to-peak of ``u`` about its
+   straight-line trend over the steady stretch, the samples after both
+   ``t_s`` and the start of the run's last fifth. A smooth convergence of
+   ``u`` after settling, or its answer to a load step before the last fifth, is
+   not ripple; chatter and a limit cycle are.
 
 >>> import famcc
 >>> plant = famcc.plants.dc_motor(load=0.0)
@@ -55,8 +59,9 @@ class Assessment:
         Fraction of the samples after settling with the bounds expanded while
         ``v`` lay inside the limits.
     ripple : float
-        Peak-to-peak of ``u`` after settling, as a fraction of the input range
-        (over the last 10 % when it never settled).
+        Peak-to-peak of ``u`` about its least-squares straight line over the
+        steady stretch (after settling and in the last fifth of the run; the
+        last 10 % when it never settled), as a fraction of the input range.
     effort : float
         Total variation of ``u`` per second over the run, input units/s.
     saturated : float
@@ -164,7 +169,7 @@ def assess(
     )
     tail = t >= 0.8 * float(t[-1])
     steady = float(np.max(np.abs(z1[tail])))
-    ripple = float(np.ptp(u[after])) / (hi - lo) if np.any(after) else math.inf
+    ripple = _ripple(t, u, ts) / (hi - lo)
     effort = float(np.sum(np.abs(np.diff(u))) / max(float(t[-1]), 1e-300))
     held, failed, untested = Status.HELD, Status.FAILED, Status.UNTESTED
     claim = f"|e| < {eps:g} for good by {settle_time:g} s"
@@ -186,7 +191,7 @@ def assess(
         nominal = Verdict("nominal", claim, failed, why)
     else:
         nominal = Verdict("nominal", claim, held, "never expanded with headroom")
-    claim = f"u ripple after settling <= {100 * ripple_limit:g} % of the range"
+    claim = f"u ripple (steady oscillation) <= {100 * ripple_limit:g} % of the range"
     ok = not ripple > ripple_limit
     sign = "<=" if ok else ">"
     detail = f"u ripple {100 * ripple:.3g} % {sign} {100 * ripple_limit:g} % of the range"
@@ -200,3 +205,18 @@ def assess(
         float(result.saturated_fraction),
         verdicts=(settling, steady_v, nominal, ripple_v),
     )
+
+
+def _ripple(t: np.ndarray, u: np.ndarray, ts: float | None) -> float:
+    """Peak-to-peak of ``u`` about its least-squares line over the steady stretch:
+    the samples at or after both ``ts`` and ``0.8 t[-1]`` (``t >= 0.9 t[-1]``
+    when ``ts`` is None)."""
+    start = 0.9 * float(t[-1]) if ts is None else max(float(ts), 0.8 * float(t[-1]))
+    m = t >= start
+    if not np.any(m):
+        return math.inf
+    tw, uw = t[m], u[m]
+    if tw.size >= 2 and float(np.ptp(tw)) > 0.0:
+        slope, offset = np.polyfit(tw - tw[0], uw, 1)
+        uw = uw - (offset + slope * (tw - tw[0]))
+    return float(np.ptp(uw))

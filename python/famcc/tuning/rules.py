@@ -27,7 +27,9 @@ class Trial:
     Attributes
     ----------
     knobs : dict
-        ``phase_budget``, ``settle_fraction``, ``mu_per_dt``.
+        ``phase_budget``, ``settle_fraction``, ``mu_per_dt`` for the rules'
+        grid; the numeric parameters of the point and ``observer = 1`` for
+        the observer search (:mod:`famcc.tuning.observed`).
     metrics : dict
         :meth:`famcc.tuning.Assessment.metrics` of the candidate's run.
     feasible : bool
@@ -94,6 +96,8 @@ class Design:
     def controller_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :class:`famcc.Controller` for this design."""
         p, r = self.parameters, self.requirements
+        if "observer_candidate" in p and self.spec is not None:
+            return dict(self.spec.config())  # a point of tune's observer search
         n = r["order"]
         stages = p["law_order"] - 1
         kw: dict[str, Any] = {
@@ -159,6 +163,8 @@ class Design:
             + (f", noise std {r['noise_std']:g}" if r["noise_std"] else "")
             + ":",
         ]
+        if "observer_candidate" in p:
+            return "\n".join([*lines, _observed_text(p["observer_candidate"], r)])
         if p["direction"] == "negative":
             lines.append(
                 "- control direction: negative (gain < 0: the output falls as the input "
@@ -336,3 +342,29 @@ def design(
         if f.level != "ok":
             warnings.warn(f"famcc.design: {f.name}: {f.message}", DesignWarning, stacklevel=2)
     return Design(req, params, checks, spec=raw["controller"])
+
+
+def _observed_text(c: dict[str, Any], r: dict[str, Any]) -> str:
+    """The lines of a Design found by tune's observer search (famcc.tuning.observed)."""
+    law = (
+        f"FiniteTime(k = {c['k']:.4g} 1/s, p = {c['p']:.3g}) on the lateral constraint"
+        if c["family"] == "finite-time"
+        else f"Linear(k = {c['k']:.4g} 1/s) stages on the longitudinal constraint"
+    )
+    mu = c["obs_mu"] if "obs_mu" in c else 1.0 / (c["obs_ratio"] * c["k"])
+    direction = "negative (b0 < 0)" if c["b0"] < 0 else "positive"
+    found = (
+        "- found by famcc.tune's observer search (beyond the paper, docs/observer.md): "
+        f"{law}, envelope eps = {c['eps']:.4g} reached by T_s = {c['settle_time']:.4g} s."
+    )
+    observer = (
+        f"- extended observer: mu = {mu:.4g} s, nominal gain b0 = {c['b0']:.4g} (the "
+        "measured or given gain); it estimates the lumped term and the law cancels it "
+        "within the actuator's range, so a load is carried without an offset; control "
+        f"direction {direction}."
+    )
+    verdict = (
+        f"- no rules' findings apply to it: its verdict is its own run at {1 / r['dt']:g} Hz "
+        "(Design.checks, finding 'tune')."
+    )
+    return f"{found}\n{observer}\n{verdict}"

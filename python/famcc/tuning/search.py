@@ -7,11 +7,11 @@ import warnings
 from collections.abc import Sequence
 from typing import Any
 
-from famcc import sim
+from famcc import _core, sim
 from famcc._common import DesignWarning
 from famcc.progress import Progress
 from famcc.signals import Constant, reference_table
-from famcc.tuning import measure
+from famcc.tuning import measure, observed
 from famcc.tuning.assess import assess
 from famcc.tuning.rules import Design, Finding, Trial, design
 
@@ -26,6 +26,13 @@ MARGIN_TIME, MARGIN_ERROR = 0.85, 0.7
 #: RK4 substeps per sample of the search's runs (the chosen candidate is confirmed
 #: with the simulator's default 10), and how many candidates to confirm at most.
 SEARCH_SUBSTEPS, CONFIRM = 2, 4
+#: What :func:`tune` minimises among the candidates that meet the requirement.
+OBJECTIVES = ("accuracy", "smooth", "effort")
+_OBJECTIVE_TEXT = {
+    "accuracy": "the least IAE",
+    "smooth": "the least total variation of u, ripple penalised",
+    "effort": "the least mean |u|",
+}
 
 
 class _Lean:
@@ -96,6 +103,7 @@ def tune(
     integral: bool | None = None,
     seed: int = 0,
     progress: bool = True,
+    objective: str = "accuracy",
 ) -> Design:
     """A design that meets the requirements on ``plant``, found by simulation.
 
@@ -116,13 +124,14 @@ def tune(
     A gain that is zero at ``x0`` or changes sign along the run, or a
     measuring run that diverges, is a :class:`famcc.ConfigError` naming
     ``gain`` that says what to give instead. It then simulates a grid of
-    candidates (phase budget x envelope fraction x
-    differentiator speed) and keeps the feasible one with the least control
-    effort (total variation of ``u``) and ripple. A candidate is feasible when
-    it settles to ``eps`` within ``settle_time``, the error stays below ``eps``
-    to the end, the bounds never expand while the actuator has headroom after
-    settling, and the input's ripple over the last stretch is at most 5 % of the
-    input range.
+    candidates from the rules (phase budget x envelope fraction x
+    differentiator speed) and searches famcc with the extended observer
+    beyond them (:mod:`famcc.tuning.observed`), and keeps the feasible
+    candidate best by ``objective``, preferring those with margin. A candidate
+    is feasible when :func:`famcc.tuning.assess` finds that its run settles to
+    ``eps`` within ``settle_time`` and stays there, the bounds never expand
+    while the actuator has headroom after settling, and the input's steady
+    oscillation is at most 5 % of the input range.
 
     Parameters
     ----------
@@ -145,6 +154,10 @@ def tune(
         Seed of the measurement noise.
     progress : bool
         Show a progress bar on stderr.
+    objective : {"accuracy", "smooth", "effort"}
+        What the choice minimises among the candidates that meet the
+        requirement: IAE, the total variation of ``u`` (ripple penalised) or
+        the mean ``|u|``.
 
     Returns
     -------
@@ -208,8 +221,11 @@ def tune(
         )
     if hold_warning:
         warnings.warn(hold_warning, DesignWarning, stacklevel=2)
+    if objective not in OBJECTIVES:
+        raise ValueError(f"objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}")
     knobs = [(b, f, m) for b in BUDGETS for f in FRACTIONS for m in MU_SAMPLES[:1]]
-    bar = Progress(len(knobs) + 2 * (len(MU_SAMPLES) - 1), "famcc.tune") if progress else None
+    total = len(knobs) + 2 * (len(MU_SAMPLES) - 1) + observed.BUDGET
+    bar = Progress(total, "famcc.tune") if progress else None
     trials: list[tuple[Trial, Design]] = []
 
     def attempt(b: float, f: float, m: float) -> None:
@@ -246,16 +262,35 @@ def tune(
 
     for b, f, m in knobs:
         attempt(b, f, m)
-    ranked = sorted(trials, key=lambda td: _score(td[0]))
+    ranked = sorted(trials, key=lambda td: _score(td[0], objective))
     for trial, _ in ranked[:2]:
         for m in MU_SAMPLES[1:]:
             attempt(trial.knobs["phase_budget"], trial.knobs["settle_fraction"], m)
+    start = ranked[0][1]
+    b0 = float(g) if gain is not None or hasattr(plant, "gain") else float(g) / measure.MARGIN
+
+    def observe(p: dict[str, Any]) -> tuple[float, float]:
+        try:
+            with warnings.catch_warnings():  # its lint findings are the run's to judge
+                warnings.simplefilter("ignore", DesignWarning)
+                d = observed.candidate(start, p, dt, limits)
+        except (_core.ConfigError, ValueError):
+            return (math.inf, math.inf)
+        knobs = {k: float(v) for k, v in p.items() if isinstance(v, (int, float))}
+        trial = _judge(run(d), {**knobs, "observer": 1.0}, eps, settle_time, limits)
+        trials.append((trial, d))
+        if bar is not None:
+            bar.step(f"observer k={p['k']:.3g}: " + ("ok" if trial.feasible else trial.reason[:40]))
+        return _score(trial, objective)
+
+    space = observed.requirement_space(order, dt, eps, settle_time, b0, float(h), limits)
+    observed.search(space, observe, seed)
     feasible = [t for t, _ in trials if t.feasible]
     roomy = [td for td in trials if _has_margin(td[0], eps, settle_time)]
     # The search integrates coarsely (SEARCH_SUBSTEPS); the choice is confirmed with
     # the simulator's default integration, falling back to the next candidates.
     confirmed = 0
-    for trial, cand in sorted(roomy or trials, key=lambda td: _score(td[0]))[:CONFIRM]:
+    for trial, cand in sorted(roomy or trials, key=lambda td: _score(td[0], objective))[:CONFIRM]:
         full = _judge(run(cand, substeps=10), trial.knobs, eps, settle_time, (lo, hi))
         confirmed += 1
         if full.feasible or not trial.feasible:
@@ -264,10 +299,18 @@ def tune(
     why = (
         f"{len(feasible)} of {len(trials)} candidates met every requirement, {len(roomy)} "
         f"with margin (settled by {MARGIN_TIME:g} settle_time, steady error below "
-        f"{MARGIN_ERROR:g} eps); chose the one with the least effort among "
+        f"{MARGIN_ERROR:g} eps); chose the best by objective {objective!r} ("
+        + _OBJECTIVE_TEXT[objective]
+        + ") among "
         + ("those with margin" if roomy else "the feasible ones")
-        + f" (total variation of u {best_trial.metrics['effort']:.3g}"
-        f"/s, ripple {100 * best_trial.metrics['ripple']:.2f} % of the range), confirmed "
+        + ": "
+        + (
+            "famcc with the extended observer"
+            if best_trial.knobs.get("observer")
+            else "the rules' design"
+        )
+        + f", IAE {best_trial.metrics['iae']:.4g}, total variation of u {best_trial.metrics['effort']:.3g}"
+        f"/s, ripple {100 * best_trial.metrics['ripple']:.2f} % of the range; confirmed "
         f"by a finely integrated run ({confirmed} tried)"
         if best_trial.feasible
         else f"no candidate of {len(trials)} met every requirement; chose the closest: "
@@ -297,8 +340,16 @@ def tune(
 def _judge(
     res: Any, knobs: dict[str, float], eps: float, settle_time: float, limits: tuple[float, float]
 ) -> Trial:
+    import numpy as np
+
     a = assess(res, eps=eps, settle_time=settle_time, u_limits=limits)
-    return Trial(knobs, a.metrics(), a.ok, "; ".join(a.failures))
+    m = a.metrics()
+    if res is None:
+        m["iae"], m["mean_abs_u"] = math.inf, math.inf
+    else:  # the objectives: IAE, and the mean |u| (the input spent)
+        m["iae"] = float(np.sum(np.abs(np.asarray(res.z1)))) * float(res.dt)
+        m["mean_abs_u"] = float(np.mean(np.abs(np.asarray(res.u))))
+    return Trial(knobs, m, a.ok, "; ".join(a.failures))
 
 
 def _has_margin(t: Trial, eps: float, settle_time: float) -> bool:
@@ -321,9 +372,17 @@ def _max_error(plant: Any, reference: Any, order: int, horizon: float) -> float:
     return max(float(np.max(np.abs(y0 - table[:, 0]))), 1e-9)
 
 
-def _score(t: Trial) -> tuple[int, float]:
-    """Feasible first; then the least effort plus a ripple penalty."""
+def _score(t: Trial, objective: str = "accuracy") -> tuple[float, float]:
+    """Feasible first (0), else the number of failed requirements; then the
+    objective: IAE (``"accuracy"``), TV(u) with a ripple penalty
+    (``"smooth"``) or the mean ``|u|`` (``"effort"``)."""
+    m = t.metrics
+    if objective == "accuracy":
+        value = m.get("iae", math.inf)
+    elif objective == "smooth":
+        value = m.get("effort", math.inf) * (1.0 + 10.0 * m.get("ripple", 0.0))
+    else:
+        value = m.get("mean_abs_u", math.inf)
     if t.feasible:
-        return (0, t.metrics["effort"] * (1.0 + 10.0 * t.metrics["ripple"]))
-    n_bad = t.reason.count(";") + 1
-    return (n_bad, t.metrics.get("effort", math.inf))
+        return (0.0, value)
+    return (float(t.reason.count(";") + 1), value)
