@@ -59,7 +59,10 @@ def _result(z1, v=None, limits=None, expanded=None, dt=0.01):
 def test_settling_held_failed_untested_at_the_bound():
     z1 = np.where(np.arange(501) * 0.01 < 2.0, 1.0, 0.0)  # settles at 2.00 s
     r = _result(z1)
-    assert verdicts.settling(r, 0.1, 1.0, 1.0).status == "held"  # bound 2.0 s
+    held = verdicts.settling(r, 0.1, 1.0, 1.0)
+    assert held.status == "held"  # bound 2.0 s
+    # never saturated: T_e = 0 in the stated bound
+    assert "max(T_e, T_s) + T' = max(0, 1) + 1 = 2 s" in held.claim
     assert verdicts.settling(r, 0.1, 1.0, 0.99).status == "failed"  # bound 1.99 s
     assert verdicts.settling(r, 0.1, 1.0, 4.01).status == "untested"  # bound 5.01 s > 5 s
     never = _result(np.ones(501))
