@@ -49,7 +49,7 @@ def requirement_space(
     Examples
     --------
     >>> sp = requirement_space(2, 1e-3, 0.01, 1.0, 2.0, 0.5, (-5.0, 5.0))
-    >>> sp.params(sp.unit(sp.default))["k"], sp.fixed["b0"]
+    >>> round(sp.params(sp.unit(sp.default))["k"], 9), sp.fixed["b0"]
     (5.0, 2.0)
     """
     t_req, lo, hi = float(settle_time), float(limits[0]), float(limits[1])
