@@ -79,7 +79,8 @@ def gains_along(
     n = len(res.t)
     if _exact_gain(plant, 0.0, np.asarray(res.x[0], dtype=float)) is not None:
         rows = range(0, n, max(1, n // 400))
-        gains += [_exact_gain(plant, float(res.t[k]), res.x[k]) or math.nan for k in rows]
+        exact = (_exact_gain(plant, float(res.t[k]), res.x[k]) for k in rows)
+        gains += [math.nan if g is None else g for g in exact]  # a zero gain is kept
     elif not isinstance(plant, BlackBox):  # a black box's state is hidden: x0 only
         rows = range(n // PULSE_POINTS, n, max(1, n // PULSE_POINTS))
         gains += [gain_at(plant, dt, limits, res.x[k], float(res.t[k]))[0] for k in rows]
