@@ -60,11 +60,8 @@ class Scaled:
 
     def __init__(self, plant: Any, k: float) -> None:
         self.plant, self.k, self.order = plant, k, plant.order
-        if callable(getattr(plant, "advance", None)) and _steps_itself(plant):
+        if isinstance(plant, famcc.plants.Stepped):  # MuJoCo, a black box: it steps itself
             self.advance = lambda t, x, u, dt: plant.advance(t, x, k * np.asarray(u), dt)
-            for name in ("substeps_of",):
-                if hasattr(plant, name):
-                    setattr(self, name, getattr(plant, name))
 
     @property
     def x0(self) -> Any:
@@ -72,10 +69,6 @@ class Scaled:
 
     def rhs(self, t: float, x: Any, u: Any) -> Any:
         return self.plant.rhs(t, x, self.k * u)
-
-
-def _steps_itself(plant: Any) -> bool:
-    return isinstance(plant, famcc.plants.Stepped)
 
 
 class Flipped:
